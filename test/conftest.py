@@ -1,0 +1,30 @@
+"""Shared fixtures: small synthetic videos and bags, written once per test session."""
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+import pytest
+
+from trap_core.synthetic import SceneConfig, write_synthetic
+
+os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+
+
+@pytest.fixture(scope="session")
+def small_scene() -> SceneConfig:
+    """A short Anim2-like video: 120 frames at 320x240 (objects cross; one leaves the view)."""
+    return SceneConfig(width=320, height=240, frames=120, seed=3)
+
+
+@pytest.fixture(scope="session")
+def small_bag(tmp_path_factory: pytest.TempPathFactory, small_scene: SceneConfig) -> Path:
+    bag, _ = write_synthetic(small_scene, tmp_path_factory.mktemp("bags") / "small")
+    return bag
+
+
+@pytest.fixture(scope="session")
+def venv_bin() -> Path:
+    """Folder of the console scripts installed beside the running interpreter."""
+    return Path(sys.executable).parent

@@ -1,0 +1,226 @@
+"""Reading image topics: every encoding, every storage, and every kind of bad input."""
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import cv2
+import numpy as np
+import pytest
+
+from trap_core.bagio import (SUPPORTED_ENCODINGS, BagError, decode_image, encode_image, image_topics,
+                             open_image_stream, write_image_bag)
+
+
+def _frames(count: int = 4, height: int = 24, width: int = 32) -> list[np.ndarray]:
+    """Frames of flat 8x8 colour blocks (Bayer and JPEG round trips are exact inside blocks)."""
+    rng = np.random.default_rng(7)
+    frames = []
+    for _ in range(count):
+        blocks = rng.integers(0, 256, size=(height // 8, width // 8, 3), dtype=np.uint8)
+        frames.append(np.kron(blocks, np.ones((8, 8, 1), dtype=np.uint8)))
+    return frames
+
+
+def _block_centres(rgb: np.ndarray) -> np.ndarray:
+    return rgb[3::8, 3::8].astype(int)
+
+
+@pytest.mark.parametrize("encoding", ["rgb8", "bgr8", "rgba8", "bgra8"])
+def test_colour_encodings_are_exact(tmp_path: Path, encoding: str) -> None:
+    frames = _frames()
+    write_image_bag(tmp_path / "bag", frames, encoding=encoding)
+    with open_image_stream(tmp_path / "bag") as stream:
+        assert stream.count == len(frames)
+        read = list(stream)
+    assert [f.index for f in read] == list(range(len(frames)))
+    for frame, original in zip(read, frames):
+        assert frame.rgb.dtype == np.uint8 and frame.rgb.shape == original.shape
+        np.testing.assert_array_equal(frame.rgb, original)
+
+
+@pytest.mark.parametrize("encoding", ["mono8", "mono16"])
+def test_mono_encodings_give_grey_rgb(tmp_path: Path, encoding: str) -> None:
+    frames = _frames()
+    write_image_bag(tmp_path / "bag", frames, encoding=encoding)
+    with open_image_stream(tmp_path / "bag") as stream:
+        for frame, original in zip(stream, frames):
+            grey = cv2.cvtColor(original, cv2.COLOR_RGB2GRAY)
+            for channel in range(3):
+                np.testing.assert_array_equal(frame.rgb[..., channel], grey)
+
+
+@pytest.mark.parametrize("encoding", ["bayer_rggb8", "bayer_bggr8", "bayer_gbrg8", "bayer_grbg8"])
+def test_bayer_encodings_demosaic_to_the_right_colours(tmp_path: Path, encoding: str) -> None:
+    frames = _frames()
+    write_image_bag(tmp_path / "bag", frames, encoding=encoding)
+    with open_image_stream(tmp_path / "bag") as stream:
+        for frame, original in zip(stream, frames):
+            # Inside flat blocks demosaicing is exact; a swapped R/B pattern would not be.
+            np.testing.assert_allclose(_block_centres(frame.rgb), _block_centres(original), atol=2)
+
+
+@pytest.mark.parametrize("fmt,tolerance", [("png", 0), ("jpeg", 12)])
+def test_compressed_images(tmp_path: Path, fmt: str, tolerance: int) -> None:
+    frames = _frames()
+    write_image_bag(tmp_path / "bag", frames, compressed=fmt, topic="/cam/compressed")
+    with open_image_stream(tmp_path / "bag") as stream:
+        assert stream.msgtype == "sensor_msgs/msg/CompressedImage"
+        for frame, original in zip(stream, frames):
+            np.testing.assert_allclose(_block_centres(frame.rgb), _block_centres(original), atol=tolerance)
+
+
+@pytest.mark.parametrize("storage,name", [("mcap", "bag"), ("sqlite3", "bag"), ("ros1", "bag.bag")])
+def test_storages_keep_stamps_and_frame_ids(tmp_path: Path, storage: str, name: str) -> None:
+    frames = _frames(count=5)
+    write_image_bag(tmp_path / name, frames, storage=storage, fps=10, frame_id="cam_optical")
+    with open_image_stream(tmp_path / name) as stream:
+        read = list(stream)
+    assert len(read) == 5
+    stamps = np.array([f.stamp_ns for f in read])
+    np.testing.assert_array_equal(np.diff(stamps), 100_000_000)
+    assert {f.frame_id for f in read} == {"cam_optical"}
+    np.testing.assert_array_equal(read[-1].rgb, frames[-1])
+
+
+def test_bare_storage_file_is_readable(tmp_path: Path) -> None:
+    write_image_bag(tmp_path / "bag", _frames(count=3))
+    (storage_file,) = (tmp_path / "bag").glob("*.mcap")
+    with open_image_stream(storage_file) as stream:
+        assert len(list(stream)) == 3
+
+
+def test_topic_choice(tmp_path: Path) -> None:
+    from rosbags.rosbag2 import Writer
+    from rosbags.typesys import Stores, get_typestore
+    store = get_typestore(Stores.ROS2_JAZZY)
+    Image, Header, Time = (store.types[n] for n in ("sensor_msgs/msg/Image", "std_msgs/msg/Header",
+                                                     "builtin_interfaces/msg/Time"))
+    with Writer(tmp_path / "two", version=9) as writer:
+        for topic in ("/left", "/right"):
+            connection = writer.add_connection(topic, Image.__msgtype__, typestore=store)
+            message = Image(header=Header(stamp=Time(sec=1, nanosec=0), frame_id=topic), height=2, width=2,
+                            encoding="mono8", is_bigendian=0, step=2, data=np.arange(4, dtype=np.uint8))
+            writer.write(connection, 1, store.serialize_cdr(message, Image.__msgtype__))
+    assert set(image_topics(tmp_path / "two")) == {"/left", "/right"}
+    with pytest.raises(BagError, match="several image topics.*/left, /right"):
+        open_image_stream(tmp_path / "two")
+    with open_image_stream(tmp_path / "two", "/right") as stream:
+        assert [f.frame_id for f in stream] == ["/right"]
+    with pytest.raises(BagError, match="no image topic '/middle'"):
+        open_image_stream(tmp_path / "two", "/middle")
+
+
+def test_bag_without_images(tmp_path: Path) -> None:
+    from rosbags.rosbag2 import Writer
+    from rosbags.typesys import Stores, get_typestore
+    store = get_typestore(Stores.ROS2_JAZZY)
+    with Writer(tmp_path / "strings", version=9) as writer:
+        connection = writer.add_connection("/chatter", "std_msgs/msg/String", typestore=store)
+        writer.write(connection, 1, store.serialize_cdr(store.types["std_msgs/msg/String"](data="hi"),
+                                                        "std_msgs/msg/String"))
+    with pytest.raises(BagError, match="no sensor_msgs/Image.*/chatter"):
+        open_image_stream(tmp_path / "strings")
+
+
+def test_missing_and_non_bag_paths(tmp_path: Path) -> None:
+    with pytest.raises(BagError, match="bag not found"):
+        open_image_stream(tmp_path / "nothing")
+    text = tmp_path / "notes.mcap"
+    text.write_text("this is not a bag\n")
+    with pytest.raises(BagError, match="not a readable"):
+        open_image_stream(text)
+    empty_dir = tmp_path / "emptydir"
+    empty_dir.mkdir()
+    with pytest.raises(BagError, match="not a readable"):
+        open_image_stream(empty_dir)
+
+
+@pytest.mark.parametrize("storage", ["mcap", "sqlite3"])
+def test_truncated_bag(tmp_path: Path, storage: str) -> None:
+    write_image_bag(tmp_path / "bag", _frames(count=30, height=64, width=64), storage=storage)
+    (storage_file,) = [p for p in (tmp_path / "bag").iterdir() if p.suffix in (".mcap", ".db3")]
+    data = storage_file.read_bytes()
+    storage_file.write_bytes(data[: len(data) // 2])
+    with pytest.raises(BagError):
+        with open_image_stream(tmp_path / "bag") as stream:
+            for _ in stream:
+                pass
+
+
+def test_corrupt_ros1_header(tmp_path: Path) -> None:
+    write_image_bag(tmp_path / "bag.bag", _frames(count=10, height=64, width=64), storage="ros1")
+    path = tmp_path / "bag.bag"
+    data = bytearray(path.read_bytes())
+    data[13:213] = b"\xff" * 200  # just after the "#ROSBAG V2.0" magic line
+    path.write_bytes(bytes(data))
+    with pytest.raises(BagError):
+        with open_image_stream(path) as stream:
+            for _ in stream:
+                pass
+
+
+def test_decode_rejects_bad_headers() -> None:
+    payload = np.zeros(12, dtype=np.uint8)
+    with pytest.raises(BagError, match="unsupported image encoding 'yuv422'"):
+        decode_image("yuv422", 2, 2, 4, payload)
+    with pytest.raises(BagError, match="height x step needs 24"):
+        decode_image("rgb8", 2, 4, 12, payload)
+    with pytest.raises(BagError, match="step 4 is shorter than a row"):
+        decode_image("rgb8", 2, 2, 4, payload)
+    with pytest.raises(BagError, match="size 0x0"):
+        decode_image("rgb8", 0, 0, 0, b"")
+
+
+def test_decode_handles_padded_rows_and_big_endian() -> None:
+    rgb = np.arange(2 * 3 * 3, dtype=np.uint8).reshape(2, 3, 3)
+    padded = np.zeros((2, 12), dtype=np.uint8)
+    padded[:, :9] = rgb.reshape(2, 9)
+    np.testing.assert_array_equal(decode_image("rgb8", 2, 3, 12, padded.ravel()), rgb)
+    big = np.array([[0x1234, 0xFF00]], dtype=">u2").view(np.uint8).ravel()
+    np.testing.assert_array_equal(decode_image("mono16", 1, 2, 4, big, is_bigendian=True)[..., 0], [[0x12, 0xFF]])
+
+
+def test_encoding_list_is_covered() -> None:
+    frame = _frames(count=1)[0]
+    for encoding in SUPPORTED_ENCODINGS:
+        if encoding in ("8uc1", "16uc1"):
+            continue
+        data, step = encode_image(frame, encoding)
+        assert decode_image(encoding, frame.shape[0], frame.shape[1], step, data).shape == frame.shape
+
+
+def test_unsupported_encoding_in_bag(tmp_path: Path) -> None:
+    from rosbags.rosbag2 import Writer
+    from rosbags.typesys import Stores, get_typestore
+    store = get_typestore(Stores.ROS2_JAZZY)
+    Image, Header, Time = (store.types[n] for n in ("sensor_msgs/msg/Image", "std_msgs/msg/Header",
+                                                     "builtin_interfaces/msg/Time"))
+    with Writer(tmp_path / "yuv", version=9) as writer:
+        connection = writer.add_connection("/cam", Image.__msgtype__, typestore=store)
+        message = Image(header=Header(stamp=Time(sec=1, nanosec=0), frame_id="c"), height=2, width=2,
+                        encoding="yuv422", is_bigendian=0, step=4, data=np.zeros(8, dtype=np.uint8))
+        writer.write(connection, 1, store.serialize_cdr(message, Image.__msgtype__))
+    with pytest.raises(BagError, match="frame 0 of /cam: unsupported image encoding 'yuv422'"):
+        with open_image_stream(tmp_path / "yuv") as stream:
+            list(stream)
+
+
+def test_streaming_does_not_hold_the_bag(small_bag: Path) -> None:
+    """Frames arrive one at a time: dropping them keeps at most a couple alive."""
+    import gc
+    import weakref
+    alive = []
+    with open_image_stream(small_bag) as stream:
+        for frame in stream:
+            alive.append(weakref.ref(frame.rgb.base if frame.rgb.base is not None else frame.rgb))
+            del frame
+            gc.collect()
+            assert sum(ref() is not None for ref in alive) <= 2
+
+
+def test_bags_are_never_overwritten(tmp_path: Path) -> None:
+    write_image_bag(tmp_path / "bag", _frames(count=1))
+    with pytest.raises(BagError, match="exists already"):
+        write_image_bag(tmp_path / "bag", _frames(count=1))
+    shutil.rmtree(tmp_path / "bag")

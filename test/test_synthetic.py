@@ -1,0 +1,107 @@
+"""Synthetic benchmark videos: ground truth matches the pixels, the scene has the promised events."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from trap_core.bagio import open_image_stream
+from trap_core.motformat import read_mot
+from trap_core.synthetic import SceneConfig, build_world, render, write_synthetic
+
+
+def _colour_box(rgb: np.ndarray, colours: np.ndarray) -> tuple[int, int, int, int] | None:
+    mask = np.zeros(rgb.shape[:2], dtype=bool)
+    for colour in colours:
+        mask |= np.all(rgb == colour, axis=-1)
+    if not mask.any():
+        return None
+    rows, cols = np.flatnonzero(mask.any(axis=1)), np.flatnonzero(mask.any(axis=0))
+    return int(cols[0]), int(rows[0]), int(cols[-1] - cols[0] + 1), int(rows[-1] - rows[0] + 1)
+
+
+def test_ground_truth_is_the_box_of_visible_pixels() -> None:
+    cfg = SceneConfig(width=320, height=240, frames=300, seed=5)
+    colours = build_world(cfg).object_colours
+    checked = 0
+    for frame in render(cfg):
+        for obj, box in enumerate(frame.boxes):
+            assert box == _colour_box(frame.rgb, colours[obj]), f"frame {frame.index} object {obj}"
+            checked += box is not None
+    assert checked > 600
+
+
+def test_same_seed_same_video_other_seed_other_video() -> None:
+    cfg = SceneConfig(width=160, height=120, frames=5, seed=11)
+    first = [f.rgb for f in render(cfg)]
+    again = [f.rgb for f in render(cfg)]
+    other = [f.rgb for f in render(SceneConfig(width=160, height=120, frames=5, seed=12))]
+    assert all(np.array_equal(a, b) for a, b in zip(first, again))
+    assert not np.array_equal(first[0], other[0])
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_anim_events_exits_crossings_camera_motion(seed: int) -> None:
+    cfg = SceneConfig(width=320, height=240, frames=721, seed=seed)
+    frames = list(render(cfg))
+    last = np.array([f.boxes[-1] is None for f in frames])
+    # Runs of absence of the last object: several, each 3-4 s (75-100 frames at 25 Hz) or more.
+    edges = np.flatnonzero(np.diff(np.r_[0, last.astype(int), 0]))
+    starts, ends = edges[::2], edges[1::2]
+    complete = (ends - starts)[ends < len(frames)]
+    assert len(complete) >= 2 and all(75 <= run <= 130 for run in complete), complete
+    # The others stay in view and at some point overlap another object (crossing / occlusion).
+    assert all(f.boxes[0] is not None and f.boxes[1] is not None for f in frames)
+    def overlap(a, b):
+        return a and b and a[0] < b[0] + b[2] and b[0] < a[0] + a[2] and a[1] < b[1] + b[3] and b[1] < a[1] + a[3]
+    crossings = sum(any(overlap(f.boxes[i], f.boxes[j]) for i in range(3) for j in range(i + 1, 3)) for f in frames)
+    assert crossings > 0
+    camera = build_world(cfg).camera
+    assert np.ptp(camera[:, 0]) > 20 and np.ptp(camera[:, 1]) > 20
+
+
+def test_background_statistics_match_the_papers_anim_videos() -> None:
+    from scipy import ndimage
+    frame = next(iter(render(SceneConfig(seed=2, frames=1))))
+    code = frame.rgb.astype(np.int64) @ np.array([65536, 256, 1])
+    labels = np.zeros(code.shape, dtype=np.int64)
+    count = 0
+    for value in np.unique(code):
+        components, k = ndimage.label(code == value)
+        labels[components > 0] = components[components > 0] + count
+        count += k
+    pairs = np.concatenate([np.stack([labels[:, 1:].ravel(), labels[:, :-1].ravel()], 1),
+                            np.stack([labels[1:].ravel(), labels[:-1].ravel()], 1)])
+    pairs = np.unique(np.sort(pairs[pairs[:, 0] != pairs[:, 1]], axis=1), axis=0)
+    assert 200 <= count <= 290
+    assert 3.5 <= 2 * len(pairs) / count <= 4.4
+
+
+def test_anim1_objects_are_identical_anim2_differ() -> None:
+    anim1 = build_world(SceneConfig(width=160, height=120, frames=2, identical=True)).object_colours
+    anim2 = build_world(SceneConfig(width=160, height=120, frames=2, identical=False)).object_colours
+    assert (anim1 == anim1[0]).all()
+    assert len({tuple(c) for obj in anim2 for c in obj}) == anim2.shape[0] * anim2.shape[1]
+
+
+def test_written_bag_and_ground_truth_agree(tmp_path: Path) -> None:
+    cfg = SceneConfig(width=160, height=120, frames=30, seed=4, noise=3.0, illumination=0.2)
+    bag, gt = write_synthetic(cfg, tmp_path / "noisy", compressed="jpeg")
+    rows = read_mot(gt)
+    assert gt.name == "noisy.gt.txt"
+    expected = [(f.index + 1, obj + 1, *box) for f in render(cfg) for obj, box in enumerate(f.boxes) if box]
+    np.testing.assert_array_equal(rows[:, :6], np.array(expected, dtype=float))
+    clean = next(iter(render(SceneConfig(width=160, height=120, frames=1, seed=4))))
+    with open_image_stream(bag) as stream:
+        assert stream.count == 30
+        first = next(iter(stream)).rgb
+    assert first.shape == (120, 160, 3)
+    assert 1.0 < np.abs(first.astype(int) - clean.rgb).mean() < 30  # noise and jpeg, same scene
+
+
+def test_bad_configs_are_refused() -> None:
+    with pytest.raises(ValueError, match="too small"):
+        SceneConfig(width=10, height=10)
+    with pytest.raises(ValueError):
+        SceneConfig(frames=0)

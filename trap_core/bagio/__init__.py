@@ -1,0 +1,22 @@
+"""Image topics of ROS 1 / ROS 2 bags: stream them out as RGB frames, or write RGB frames into them."""
+
+from trap_core.bagio.decode import SUPPORTED_ENCODINGS, decode_compressed, decode_image
+from trap_core.bagio.encode import compress_image, encode_image
+from trap_core.bagio.errors import BagError
+from trap_core.bagio.reader import ImageFrame, ImageStream, image_topics, open_image_stream
+from trap_core.bagio.writer import STORAGES, write_image_bag
+
+__all__ = [
+    "STORAGES",
+    "SUPPORTED_ENCODINGS",
+    "BagError",
+    "compress_image",
+    "ImageFrame",
+    "ImageStream",
+    "decode_compressed",
+    "decode_image",
+    "encode_image",
+    "image_topics",
+    "open_image_stream",
+    "write_image_bag",
+]

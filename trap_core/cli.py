@@ -1,0 +1,26 @@
+"""What every command-line entry point shares: one-line errors, exit codes, interrupt handling."""
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable
+
+from trap_core.bagio import BagError
+
+EXIT_ERROR = 1
+EXIT_INTERRUPTED = 130
+
+
+class UsageError(Exception):
+    """A parameter is out of range or inconsistent; the message is one line for the user."""
+
+
+def run_main(main: Callable[[], int | None], name: str) -> int:
+    """Run ``main``; turn expected failures into ``name: error: ...`` and a non-zero exit code."""
+    try:
+        return int(main() or 0)
+    except (BagError, UsageError, ValueError, OSError) as error:
+        print(f"{name}: error: {error}", file=sys.stderr)
+        return EXIT_ERROR
+    except KeyboardInterrupt:
+        print(f"{name}: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED

@@ -1,0 +1,6 @@
+"""Frames' regions to plane region adjacency graphs (nodes, contacts, rotation system, faces)."""
+
+from trap_core.rag.errors import GraphError
+from trap_core.rag.plane_graph import PlaneGraph, build_plane_graph, colour_label
+
+__all__ = ["GraphError", "PlaneGraph", "build_plane_graph", "colour_label"]

@@ -1,0 +1,271 @@
+"""Compiled kernels of the plane-graph stage (numba, ``nogil``).
+
+The region adjacency graph is built as the dual of the *boundary graph*: its vertices are
+pixel corners where three or more regions meet (junctions), its edges the maximal crack
+paths between them (one per contact stretch), and its faces the regions. The image outside
+is one more region, so the border is a boundary like any other. Reading the embedding off the
+crack grid makes it valid by construction (TRAP_SPEC section 2, section 10 "Graph").
+"""
+from __future__ import annotations
+
+import numba as nb
+import numpy as np
+
+# Crack directions from a corner, clockwise on screen (y down): up, right, down, left.
+_DY = np.array([-1, 0, 1, 0], dtype=np.int64)
+_DX = np.array([0, 1, 0, -1], dtype=np.int64)
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _label(labels: np.ndarray, y: int, x: int, outside: int) -> int:
+    if y < 0 or x < 0 or y >= labels.shape[0] or x >= labels.shape[1]:
+        return outside
+    return labels[y, x]
+
+
+@nb.njit(cache=True, nogil=True)
+def _corner_cracks(labels: np.ndarray, outside: int) -> np.ndarray:
+    """Bit d of ``mask[i, j]`` is set when a crack leaves corner (i, j) in direction d."""
+    height, width = labels.shape
+    mask = np.zeros((height + 1, width + 1), dtype=np.uint8)
+    for i in range(height + 1):
+        for j in range(width + 1):
+            tl = _label(labels, i - 1, j - 1, outside)
+            tr = _label(labels, i - 1, j, outside)
+            bl = _label(labels, i, j - 1, outside)
+            br = _label(labels, i, j, outside)
+            bits = 0
+            if tl != tr:
+                bits |= 1
+            if tr != br:
+                bits |= 2
+            if bl != br:
+                bits |= 4
+            if tl != bl:
+                bits |= 8
+            mask[i, j] = bits
+    return mask
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _sides(labels: np.ndarray, i: int, j: int, d: int, outside: int) -> tuple[int, int]:
+    """(left, right) region of the crack leaving corner (i, j) in direction d."""
+    tl = _label(labels, i - 1, j - 1, outside)
+    tr = _label(labels, i - 1, j, outside)
+    bl = _label(labels, i, j - 1, outside)
+    br = _label(labels, i, j, outside)
+    if d == 0:
+        return tl, tr
+    if d == 1:
+        return tr, br
+    if d == 2:
+        return br, bl
+    return bl, tl
+
+
+@nb.njit(cache=True, nogil=True)
+def trace_boundary_graph(labels: np.ndarray, n_regions: int):
+    """Trace every contact stretch between junctions.
+
+    Returns per dart (directed stretch): origin corner (i, j), start direction, twin dart,
+    left and right region, crack length, and twice the signed shoelace area of its path.
+    Closed boundaries without any junction (a region enclosed by one other region, or one
+    region filling the image) get a virtual junction on the loop.
+    """
+    outside = n_regions
+    mask = _corner_cracks(labels, outside)
+    height, width = mask.shape
+    dart_of = np.full((height, width, 4), -1, dtype=np.int64)
+    seen = np.zeros((height, width), dtype=np.bool_)
+    cap = 64
+    origin_i = np.empty(cap, dtype=np.int64)
+    origin_j = np.empty(cap, dtype=np.int64)
+    start_dir = np.empty(cap, dtype=np.int64)
+    twin = np.empty(cap, dtype=np.int64)
+    left = np.empty(cap, dtype=np.int64)
+    right = np.empty(cap, dtype=np.int64)
+    length = np.empty(cap, dtype=np.int64)
+    area2 = np.empty(cap, dtype=np.int64)
+    n_darts = 0
+    # Pass 0 starts at real junctions; pass 1 at loop corners never reached (virtual junctions).
+    for pass_no in range(2):
+        for i0 in range(height):
+            for j0 in range(width):
+                bits = mask[i0, j0]
+                degree = (bits & 1) + ((bits >> 1) & 1) + ((bits >> 2) & 1) + ((bits >> 3) & 1)
+                if pass_no == 0 and degree < 3:
+                    continue
+                if pass_no == 1 and (degree != 2 or seen[i0, j0]):
+                    continue
+                seen[i0, j0] = True
+                for d0 in range(4):
+                    if not (bits >> d0) & 1 or dart_of[i0, j0, d0] >= 0:
+                        continue
+                    if n_darts + 2 > cap:
+                        cap *= 2
+                        origin_i = _grow(origin_i, cap)
+                        origin_j = _grow(origin_j, cap)
+                        start_dir = _grow(start_dir, cap)
+                        twin = _grow(twin, cap)
+                        left = _grow(left, cap)
+                        right = _grow(right, cap)
+                        length = _grow(length, cap)
+                        area2 = _grow(area2, cap)
+                    i, j, d = i0, j0, d0
+                    steps = 0
+                    area = 0
+                    while True:
+                        ni, nj = i + _DY[d], j + _DX[d]
+                        area += j * ni - nj * i
+                        steps += 1
+                        i, j = ni, nj
+                        nbits = mask[i, j]
+                        ndeg = (nbits & 1) + ((nbits >> 1) & 1) + ((nbits >> 2) & 1) + ((nbits >> 3) & 1)
+                        if ndeg >= 3 or (i == i0 and j == j0):
+                            break
+                        seen[i, j] = True
+                        back = (d + 2) % 4
+                        for nd in range(4):
+                            if (nbits >> nd) & 1 and nd != back:
+                                d = nd
+                                break
+                    back = (d + 2) % 4
+                    fwd, rev = n_darts, n_darts + 1
+                    lf, rf = _sides(labels, i0, j0, d0, outside)
+                    origin_i[fwd], origin_j[fwd], start_dir[fwd] = i0, j0, d0
+                    origin_i[rev], origin_j[rev], start_dir[rev] = i, j, back
+                    twin[fwd], twin[rev] = rev, fwd
+                    left[fwd], right[fwd], left[rev], right[rev] = lf, rf, rf, lf
+                    length[fwd] = length[rev] = steps
+                    area2[fwd], area2[rev] = area, -area
+                    dart_of[i0, j0, d0] = fwd
+                    dart_of[i, j, back] = rev
+                    n_darts += 2
+    return (origin_i[:n_darts], origin_j[:n_darts], start_dir[:n_darts], twin[:n_darts],
+            left[:n_darts], right[:n_darts], length[:n_darts], area2[:n_darts], dart_of)
+
+
+@nb.njit(cache=True, nogil=True)
+def _grow(array: np.ndarray, cap: int) -> np.ndarray:
+    out = np.empty(cap, dtype=array.dtype)
+    out[: array.size] = array
+    return out
+
+
+@nb.njit(cache=True, nogil=True)
+def rotation_system(origin_i: np.ndarray, origin_j: np.ndarray, start_dir: np.ndarray, twin: np.ndarray,
+                    right: np.ndarray, area2: np.ndarray, dart_of: np.ndarray, n_nodes: int) -> np.ndarray:
+    """``rot_next[d]``: the next half-edge around node ``right[d]`` in the region graph.
+
+    Half-edge d of the region graph leaves node ``right[d]`` across stretch d. Around a node
+    the half-edges follow its boundary (phi(d) = the dart before twin(d) clockwise at the
+    junction). A region with holes has one boundary cycle per hole besides its outer one;
+    each hole's cycle is spliced in after the outer cycle, which keeps the embedding plane
+    (the hole's contents hang on this region alone).
+    """
+    n = twin.size
+    phi = np.empty(n, dtype=np.int64)
+    for d in range(n):
+        t = twin[d]
+        i, j, dd = origin_i[t], origin_j[t], start_dir[t]
+        for step in range(1, 5):
+            cand = dart_of[i, j, (dd - step) % 4]
+            if cand >= 0:
+                phi[d] = cand
+                break
+    rot_next = phi.copy()
+    # Group the phi-cycles by node; the cycle of largest |area| is the outer boundary.
+    cycle_of = np.full(n, -1, dtype=np.int64)
+    cycle_first = np.empty(n, dtype=np.int64)
+    cycle_last = np.empty(n, dtype=np.int64)
+    cycle_area = np.empty(n, dtype=np.int64)
+    cycle_node = np.empty(n, dtype=np.int64)
+    n_cycles = 0
+    for d in range(n):
+        if cycle_of[d] >= 0:
+            continue
+        area = 0
+        e = d
+        last = d
+        while cycle_of[e] < 0:
+            cycle_of[e] = n_cycles
+            area += area2[e]
+            last = e
+            e = phi[e]
+        cycle_first[n_cycles] = d
+        cycle_last[n_cycles] = last
+        cycle_area[n_cycles] = abs(area)
+        cycle_node[n_cycles] = right[d]
+        n_cycles += 1
+    outer = np.full(n_nodes, -1, dtype=np.int64)
+    for c in range(n_cycles):
+        node = cycle_node[c]
+        if outer[node] < 0 or cycle_area[c] > cycle_area[outer[node]]:
+            outer[node] = c
+    tail = np.full(n_nodes, -1, dtype=np.int64)  # current last half-edge of the spliced rotation
+    for node in range(n_nodes):
+        if outer[node] >= 0:
+            tail[node] = cycle_last[outer[node]]
+    for c in range(n_cycles):
+        node = cycle_node[c]
+        if c == outer[node]:
+            continue
+        head = rot_next[tail[node]]
+        rot_next[tail[node]] = cycle_first[c]
+        rot_next[cycle_last[c]] = head
+        tail[node] = cycle_last[c]
+    return rot_next
+
+
+@nb.njit(cache=True, nogil=True)
+def trace_faces(rot_next: np.ndarray, twin: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Faces of the embedding: orbits of ``h -> rot_next[twin[h]]``.
+
+    Returns ``face_of`` (face of each half-edge), and the half-edges of all faces in
+    traversal order with CSR ``offsets``.
+    """
+    n = twin.size
+    face_of = np.full(n, -1, dtype=np.int64)
+    order = np.empty(n, dtype=np.int64)
+    offsets = np.empty(n + 1, dtype=np.int64)
+    offsets[0] = 0
+    n_faces = 0
+    pos = 0
+    for h in range(n):
+        if face_of[h] >= 0:
+            continue
+        e = h
+        while face_of[e] < 0:
+            face_of[e] = n_faces
+            order[pos] = e
+            pos += 1
+            e = rot_next[twin[e]]
+        n_faces += 1
+        offsets[n_faces] = pos
+    return face_of, order, offsets[: n_faces + 1]
+
+
+@nb.njit(cache=True, nogil=True)
+def region_stats(labels: np.ndarray, rgb: np.ndarray, n: int):
+    """Area, pixel sums of x, y and colour, and bounding box (x0, y0, x1, y1 inclusive) per region."""
+    area = np.zeros(n, dtype=np.int64)
+    sums = np.zeros((n, 5), dtype=np.float64)
+    box = np.empty((n, 4), dtype=np.int64)
+    box[:, 0] = labels.shape[1]
+    box[:, 1] = labels.shape[0]
+    box[:, 2] = -1
+    box[:, 3] = -1
+    for y in range(labels.shape[0]):
+        for x in range(labels.shape[1]):
+            r = labels[y, x]
+            area[r] += 1
+            sums[r, 0] += x
+            sums[r, 1] += y
+            sums[r, 2] += rgb[y, x, 0]
+            sums[r, 3] += rgb[y, x, 1]
+            sums[r, 4] += rgb[y, x, 2]
+            box[r, 0] = min(box[r, 0], x)
+            box[r, 1] = min(box[r, 1], y)
+            box[r, 2] = max(box[r, 2], x)
+            box[r, 3] = max(box[r, 3], y)
+    return area, sums, box

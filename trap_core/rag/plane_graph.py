@@ -1,0 +1,127 @@
+"""One frame's region adjacency graph as a plane graph (TRAP_SPEC section 2)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from trap_core.rag._kernels import region_stats, rotation_system, trace_boundary_graph, trace_faces
+from trap_core.rag.errors import GraphError
+
+
+@dataclass(frozen=True)
+class PlaneGraph:
+    """Regions, their contacts and the planar embedding of one frame.
+
+    Nodes ``0..n_nodes-1`` are regions; node ``n_nodes`` stands for the outside of the image
+    (so contacts with the border are edges and the outer face is explicit). The embedding is
+    stored as half-edges: half-edge ``h`` leaves ``he_origin[h]``; ``he_twin[h]`` is its
+    reverse; ``he_next[h]`` is the next half-edge around the same node (rotation system).
+    Every contact *stretch* is one edge, so two regions touching along two separate stretches
+    share two edges. Faces are the orbits of ``h -> he_next[he_twin[h]]``.
+    """
+
+    n_nodes: int
+    centroid: np.ndarray      # (n, 2) float: barycentre x, y
+    area: np.ndarray          # (n,) int: pixels
+    bbox: np.ndarray          # (n, 4) int: x0, y0, x1, y1 inclusive
+    colour: np.ndarray        # (n, 3) float: mean RGB
+    label: np.ndarray         # (n,) int: discretised mean colour
+    he_origin: np.ndarray     # (2m,) int
+    he_twin: np.ndarray       # (2m,) int
+    he_next: np.ndarray       # (2m,) int
+    he_length: np.ndarray     # (2m,) int: contact length in pixel edges
+    face_of: np.ndarray       # (2m,) int: face on the left... of each half-edge's traversal
+    face_half_edges: np.ndarray  # half-edges of all faces, in traversal order
+    face_offsets: np.ndarray  # (F+1,) CSR offsets into face_half_edges
+
+    @property
+    def outside(self) -> int:
+        """Node id of the image's outside."""
+        return self.n_nodes
+
+    @property
+    def n_faces(self) -> int:
+        return self.face_offsets.size - 1
+
+    @property
+    def edges(self) -> np.ndarray:
+        """(m, 2) node pairs, one row per contact stretch (outside node included)."""
+        first = np.flatnonzero(np.arange(self.he_twin.size) < self.he_twin)
+        return np.column_stack([self.he_origin[first], self.he_origin[self.he_twin[first]]])
+
+    def face_nodes(self, face: int) -> np.ndarray:
+        """Nodes around ``face`` in traversal order (a node repeats where the face touches it twice)."""
+        return self.he_origin[self.face_half_edges[self.face_offsets[face]:self.face_offsets[face + 1]]]
+
+    def outer_faces(self) -> np.ndarray:
+        """(F,) bool: the face touches the outside node (it is part of the outer face)."""
+        touches = self.he_origin[self.face_half_edges] == self.outside
+        return np.logical_or.reduceat(touches, self.face_offsets[:-1]) if touches.size else np.zeros(0, bool)
+
+    def rotation(self, node: int) -> np.ndarray:
+        """Neighbours of ``node`` in cyclic order around it (one entry per contact stretch)."""
+        start = np.flatnonzero(self.he_origin == node)
+        if start.size == 0:
+            return np.empty(0, dtype=np.int64)
+        order = [start[0]]
+        h = self.he_next[start[0]]
+        while h != start[0]:
+            order.append(h)
+            h = self.he_next[h]
+        return self.he_origin[self.he_twin[np.array(order)]]
+
+    def euler_characteristic(self) -> int:
+        """V - E + F of the embedding, outside node included: 2 for a plane embedding."""
+        return (self.n_nodes + 1) - self.he_twin.size // 2 + self.n_faces
+
+    def degree(self) -> np.ndarray:
+        """(n,) number of distinct neighbouring regions of each region (the outside not counted)."""
+        pairs = self.edges
+        pairs = pairs[(pairs < self.n_nodes).all(axis=1)]
+        pairs = np.unique(np.sort(pairs, axis=1), axis=0)
+        return np.bincount(pairs.ravel(), minlength=self.n_nodes)
+
+
+def colour_label(colour: np.ndarray, bins: int) -> np.ndarray:
+    """Discretise mean colours into ``bins`` levels per channel: label = r * bins^2 + g * bins + b."""
+    levels = np.clip((colour * bins / 256.0).astype(np.int64), 0, bins - 1)
+    return (levels[:, 0] * bins + levels[:, 1]) * bins + levels[:, 2]
+
+
+def build_plane_graph(labels: np.ndarray, n_regions: int, rgb: np.ndarray, colour_bins: int = 4) -> PlaneGraph:
+    """Build the plane region adjacency graph of a label image.
+
+    Parameters
+    ----------
+    labels : (H, W) int32 array
+        Region of each pixel, ``0..n_regions-1``, each region 4-connected (what
+        :mod:`trap_core.segmentation` returns).
+    n_regions : int
+    rgb : (H, W, 3) uint8 array
+        The frame, for mean colours.
+    colour_bins : int
+        Levels per channel of the node label (TRAP_SPEC section 2: label = discretised colour).
+
+    Returns
+    -------
+    PlaneGraph
+        Nodes with barycentre, area, box, colour and label; the embedding read off the pixel
+        topology (junctions of three or more regions are faces), valid by construction:
+        ``euler_characteristic() == 2``.
+    """
+    if labels.ndim != 2 or labels.shape != rgb.shape[:2] or labels.size == 0:
+        raise GraphError(f"labels {labels.shape} and image {rgb.shape} do not match")
+    if not 1 <= colour_bins <= 256:
+        raise GraphError(f"colour_bins must be within 1..256, not {colour_bins}")
+    labels = np.ascontiguousarray(labels, dtype=np.int32)
+    area, sums, box = region_stats(labels, rgb, n_regions)
+    if (area == 0).any():
+        raise GraphError("label image has unused labels: regions must be numbered 0..n-1")
+    centroid = sums[:, :2] / area[:, None]
+    colour = sums[:, 2:] / area[:, None]
+    oi, oj, sdir, twin, left, right, length, area2, dart_of = trace_boundary_graph(labels, n_regions)
+    rot_next = rotation_system(oi, oj, sdir, twin, right, area2, dart_of, n_regions + 1)
+    face_of, face_half_edges, face_offsets = trace_faces(rot_next, twin)
+    return PlaneGraph(n_regions, centroid, area, box, colour, colour_label(colour, colour_bins),
+                      right, twin, rot_next, length, face_of, face_half_edges, face_offsets)

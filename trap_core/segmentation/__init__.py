@@ -1,0 +1,7 @@
+"""Frames to regions: Felzenszwalb-Huttenlocher (constant or size threshold) or exact colours."""
+
+from trap_core.segmentation.components import colour_components
+from trap_core.segmentation.errors import SegmentationError
+from trap_core.segmentation.felzenszwalb import THRESHOLD_MODES, felzenszwalb
+
+__all__ = ["THRESHOLD_MODES", "SegmentationError", "colour_components", "felzenszwalb"]

@@ -1,0 +1,175 @@
+"""Compiled kernels of the segmentation stage (numba, ``nogil`` so frames can run on threads).
+
+Private: :mod:`trap_core.segmentation.felzenszwalb` and :mod:`.components` wrap them.
+"""
+from __future__ import annotations
+
+import numba as nb
+import numpy as np
+
+# Neighbour offsets (dy, dx): 4-connectivity uses the first two, 8-connectivity all four.
+_OFFSETS = np.array([[0, 1], [1, 0], [1, 1], [1, -1]], dtype=np.int64)
+# Bins per colour-distance unit for the counting sort of edge weights.
+_WEIGHT_BINS_PER_UNIT = 16
+
+
+@nb.njit(cache=True, nogil=True)
+def _find(parent: np.ndarray, node: int) -> int:
+    root = node
+    while parent[root] != root:
+        root = parent[root]
+    while parent[node] != root:  # path compression
+        nxt = parent[node]
+        parent[node] = root
+        node = nxt
+    return root
+
+
+@nb.njit(cache=True, nogil=True)
+def _edges(image: np.ndarray, connectivity: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Pixel-pair edges and their Euclidean colour distance."""
+    height, width, channels = image.shape
+    n_dirs = 2 if connectivity == 4 else 4
+    capacity = height * width * n_dirs
+    a = np.empty(capacity, dtype=np.int32)
+    b = np.empty(capacity, dtype=np.int32)
+    w = np.empty(capacity, dtype=np.float32)
+    count = 0
+    for y in range(height):
+        for x in range(width):
+            for k in range(n_dirs):
+                ny = y + _OFFSETS[k, 0]
+                nx = x + _OFFSETS[k, 1]
+                if ny >= height or nx < 0 or nx >= width:
+                    continue
+                dist = 0.0
+                for c in range(channels):
+                    diff = image[y, x, c] - image[ny, nx, c]
+                    dist += diff * diff
+                a[count] = y * width + x
+                b[count] = ny * width + nx
+                w[count] = np.sqrt(dist)
+                count += 1
+    return a[:count], b[:count], w[:count]
+
+
+@nb.njit(cache=True, nogil=True)
+def _sort_edges(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Edges in order of weight, O(n): counting sort on weights quantised to 1/16 unit.
+
+    The edge arrays themselves are permuted, so the merge loop then reads them sequentially.
+    """
+    top = 0.0
+    for value in w:
+        top = max(top, value)
+    n_bins = int(top * _WEIGHT_BINS_PER_UNIT) + 2
+    counts = np.zeros(n_bins + 1, dtype=np.int64)
+    for value in w:
+        counts[int(value * _WEIGHT_BINS_PER_UNIT) + 1] += 1
+    for i in range(1, n_bins + 1):
+        counts[i] += counts[i - 1]
+    sa = np.empty_like(a)
+    sb = np.empty_like(b)
+    sw = np.empty_like(w)
+    for i in range(w.size):
+        slot = int(w[i] * _WEIGHT_BINS_PER_UNIT)
+        j = counts[slot]
+        sa[j] = a[i]
+        sb[j] = b[i]
+        sw[j] = w[i]
+        counts[slot] += 1
+    return sa, sb, sw
+
+
+@nb.njit(cache=True, nogil=True)
+def felzenszwalb_kernel(image: np.ndarray, k: float, min_size: int, size_threshold: bool,
+                        connectivity: int) -> np.ndarray:
+    """Graph-based segmentation (TRAP_SPEC section 1) of a smoothed float32 image.
+
+    Merge rule: ``w <= min(Int(C1) + tau(C1), Int(C2) + tau(C2))`` with ``tau = k / |C|``
+    (``size_threshold``) or ``tau = k``. Returns a (H, W) int32 label image (not compacted).
+    """
+    height, width = image.shape[0], image.shape[1]
+    a, b, w = _sort_edges(*_edges(image, connectivity))
+    n = height * width
+    parent = np.arange(n, dtype=np.int32)
+    size = np.ones(n, dtype=np.int32)
+    internal = np.zeros(n, dtype=np.float32)
+    k32 = np.float32(k)
+    for idx in range(w.size):
+        ra = _find(parent, a[idx])
+        rb = _find(parent, b[idx])
+        if ra == rb:
+            continue
+        weight = w[idx]
+        tau_a = k32 / size[ra] if size_threshold else k32
+        tau_b = k32 / size[rb] if size_threshold else k32
+        if weight <= min(internal[ra] + tau_a, internal[rb] + tau_b):
+            if size[ra] < size[rb]:
+                ra, rb = rb, ra
+            parent[rb] = ra
+            size[ra] += size[rb]
+            internal[ra] = max(weight, internal[ra], internal[rb])
+    if min_size > 1:
+        for idx in range(w.size):
+            ra = _find(parent, a[idx])
+            rb = _find(parent, b[idx])
+            if ra != rb and (size[ra] < min_size or size[rb] < min_size):
+                if size[ra] < size[rb]:
+                    ra, rb = rb, ra
+                parent[rb] = ra
+                size[ra] += size[rb]
+    labels = np.empty((height, width), dtype=np.int32)
+    for p in range(n):
+        labels[p // width, p % width] = _find(parent, p)
+    return labels
+
+
+@nb.njit(cache=True, nogil=True)
+def relabel_4connected(labels: np.ndarray) -> tuple[np.ndarray, int]:
+    """Components of equal label under 4-adjacency, numbered 0.. in raster order of first pixel.
+
+    Applied after every segmentation: regions joined only diagonally become separate regions,
+    which the plane graph needs (TRAP_SPEC section 2: 4-adjacency).
+    """
+    height, width = labels.shape
+    n = height * width
+    parent = np.arange(n, dtype=np.int32)
+    for y in range(height):
+        for x in range(width):
+            p = y * width + x
+            if x + 1 < width and labels[y, x] == labels[y, x + 1]:
+                ra, rb = _find(parent, p), _find(parent, p + 1)
+                if ra != rb:
+                    parent[max(ra, rb)] = min(ra, rb)
+            if y + 1 < height and labels[y, x] == labels[y + 1, x]:
+                ra, rb = _find(parent, p), _find(parent, p + width)
+                if ra != rb:
+                    parent[max(ra, rb)] = min(ra, rb)
+    out = np.empty((height, width), dtype=np.int32)
+    compact = np.full(n, -1, dtype=np.int32)
+    count = 0
+    for p in range(n):
+        root = _find(parent, p)
+        if compact[root] < 0:
+            compact[root] = count
+            count += 1
+        out[p // width, p % width] = compact[root]
+    return out, count
+
+
+@nb.njit(cache=True, nogil=True)
+def compact_labels(labels: np.ndarray) -> tuple[np.ndarray, int]:
+    """Renumber labels 0.. in raster order of first pixel (labels must be < labels.size)."""
+    height, width = labels.shape
+    compact = np.full(height * width, -1, dtype=np.int32)
+    out = np.empty((height, width), dtype=np.int32)
+    count = 0
+    for y in range(height):
+        for x in range(width):
+            label = labels[y, x]
+            if compact[label] < 0:
+                compact[label] = count
+                count += 1
+            out[y, x] = compact[label]
+    return out, count

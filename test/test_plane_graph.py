@@ -1,0 +1,155 @@
+"""Plane region adjacency graphs: valid embeddings (Euler), faces, rotations, attributes."""
+from __future__ import annotations
+
+import cv2
+import numpy as np
+import pytest
+import skimage.data
+
+from trap_core.rag import GraphError, build_plane_graph
+from trap_core.segmentation import colour_components, felzenszwalb
+from trap_core.segmentation._kernels import relabel_4connected
+from trap_core.synthetic import SceneConfig, render
+
+
+def _graph(labels: np.ndarray, rgb: np.ndarray | None = None):
+    labels, n = relabel_4connected(np.ascontiguousarray(labels, dtype=np.int32))
+    rgb = np.zeros(labels.shape + (3,), dtype=np.uint8) if rgb is None else rgb
+    return build_plane_graph(labels, n, rgb)
+
+
+def _assert_valid_embedding(graph) -> None:
+    assert graph.euler_characteristic() == 2
+    half_edges = graph.he_twin.size
+    assert np.array_equal(graph.he_twin[graph.he_twin], np.arange(half_edges))
+    assert np.array_equal(np.sort(graph.he_next), np.arange(half_edges))  # a permutation
+    assert np.array_equal(graph.he_origin[graph.he_next], graph.he_origin)  # rotation stays at its node
+    assert np.array_equal(np.sort(graph.face_half_edges), np.arange(half_edges))  # each in one face
+    # Consecutive half-edges of a face chain head to tail.
+    for face in range(graph.n_faces):
+        ring = graph.face_half_edges[graph.face_offsets[face]:graph.face_offsets[face + 1]]
+        heads = graph.he_origin[graph.he_twin[ring]]
+        assert np.array_equal(heads, graph.he_origin[np.roll(ring, -1)])
+    # Without the outside node: one component, inner faces + 1 outer face.
+    inner = (~graph.outer_faces()).sum()
+    edges = graph.edges
+    inner_edges = (edges < graph.n_nodes).all(axis=1).sum()
+    assert graph.n_nodes - inner_edges + inner + 1 == 2
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_euler_on_synthetic_video_frames(seed: int) -> None:
+    degrees = []
+    for frame in render(SceneConfig(width=320, height=240, frames=60, seed=seed)):
+        if frame.index % 10:
+            continue
+        labels, n = colour_components(frame.rgb)
+        graph = build_plane_graph(labels, n, frame.rgb)
+        _assert_valid_embedding(graph)
+        degrees.append(graph.degree().mean())
+    assert 3.4 < np.mean(degrees) < 4.5
+
+
+def test_euler_on_random_label_images() -> None:
+    rng = np.random.default_rng(1)
+    for _ in range(300):
+        height, width = rng.integers(1, 14, size=2)
+        labels = rng.integers(0, rng.integers(1, 6), size=(height, width))
+        _assert_valid_embedding(_graph(labels))
+
+
+@pytest.mark.parametrize("name", ["astronaut", "coffee", "chelsea", "camera"])
+def test_euler_on_natural_images(name: str) -> None:
+    image = getattr(skimage.data, name)()
+    image = cv2.cvtColor(image, cv2.COLOR_GRAY2RGB) if image.ndim == 2 else image
+    image = cv2.resize(image, (320, 240), interpolation=cv2.INTER_AREA)
+    for k in (5, 20):
+        labels, n = felzenszwalb(image, k=k)
+        _assert_valid_embedding(build_plane_graph(labels, n, image))
+
+
+def test_region_enclosed_by_one_region() -> None:
+    labels = np.zeros((7, 7), dtype=np.int32)
+    labels[2:5, 2:5] = 1
+    graph = _graph(labels)
+    _assert_valid_embedding(graph)
+    assert graph.degree().tolist() == [1, 1]
+    assert graph.rotation(1).tolist() == [0]
+    assert sorted(graph.rotation(0).tolist()) == [1, 2]  # the island and the outside
+
+
+def test_single_region_image() -> None:
+    graph = _graph(np.zeros((3, 4), dtype=np.int32))
+    _assert_valid_embedding(graph)
+    assert graph.n_nodes == 1 and graph.edges.tolist() == [[0, 1]]
+
+
+def test_three_regions_meeting_make_an_inner_face_and_mirror_reverses_it() -> None:
+    labels = np.zeros((8, 8), dtype=np.int32)
+    labels[:, 4:] = 1
+    labels[4:, :] = 2  # a T: 0 top-left, 1 top-right, 2 bottom
+    graph = _graph(labels)
+    inner = [graph.face_nodes(f).tolist() for f in range(graph.n_faces) if not graph.outer_faces()[f]]
+    assert len(inner) == 1 and sorted(inner[0]) == [0, 1, 2]
+    mirrored = _graph(labels[:, ::-1])  # relabelled: 0 is now the top-left region (was 1)
+    mirror_inner = [mirrored.face_nodes(f).tolist() for f in range(mirrored.n_faces) if not mirrored.outer_faces()[f]]
+
+    def cyclic(seq: list[int]) -> list[int]:
+        start = seq.index(min(seq))
+        return seq[start:] + seq[:start]
+    # Mapping old -> new ids (0<->1) and reading the face the other way round gives the same cycle.
+    swapped = [{0: 1, 1: 0, 2: 2}[v] for v in inner[0]]
+    assert cyclic(mirror_inner[0]) == cyclic(swapped[::-1])
+    assert cyclic(mirror_inner[0]) != cyclic(swapped)
+
+
+def test_rotation_follows_the_geometry() -> None:
+    """Around the centre of a 3x3 block layout, neighbours come in circular order."""
+    labels = np.repeat(np.repeat(np.arange(9).reshape(3, 3), 4, axis=0), 4, axis=1)
+    graph = _graph(labels)
+    ring = graph.rotation(4).tolist()
+    assert sorted(ring) == [1, 3, 5, 7]
+    start = ring.index(1)
+    assert ring[start:] + ring[:start] in ([1, 5, 7, 3], [1, 3, 7, 5])
+
+
+def test_two_separate_contacts_are_two_edges() -> None:
+    labels = np.zeros((5, 9), dtype=np.int32)
+    labels[1:4, 1:8] = 1
+    labels[2, 1:8] = 2   # region 2 splits 1? no: 1 stays a ring-less pair of bars joined at the ends
+    labels[1:4, 1] = 1
+    labels[1:4, 7] = 1
+    graph = _graph(labels)
+    _assert_valid_embedding(graph)
+    pairs = [tuple(sorted(e)) for e in graph.edges.tolist()]
+    assert pairs.count((0, 1)) == 1  # the ring 1 meets 0 along one closed stretch
+    assert pairs.count((1, 2)) == 1
+
+
+def test_pinched_checkerboard() -> None:
+    labels = np.array([[0, 1], [1, 0]])
+    graph = _graph(np.kron(labels, np.ones((3, 3), dtype=int)))
+    _assert_valid_embedding(graph)
+    assert graph.n_nodes == 4
+
+
+def test_node_attributes() -> None:
+    rgb = np.zeros((10, 20, 3), dtype=np.uint8)
+    rgb[:, 10:] = (250, 10, 10)
+    labels, n = colour_components(rgb)
+    graph = build_plane_graph(labels, n, rgb, colour_bins=4)
+    right = labels[0, 15]
+    assert graph.area[right] == 100
+    assert graph.centroid[right].tolist() == [14.5, 4.5]
+    assert graph.bbox[right].tolist() == [10, 0, 19, 9]
+    assert graph.colour[right].tolist() == [250, 10, 10]
+    assert graph.label[right] == 3 * 16
+
+
+def test_bad_input() -> None:
+    with pytest.raises(GraphError, match="do not match"):
+        build_plane_graph(np.zeros((3, 3), dtype=np.int32), 1, np.zeros((4, 3, 3), dtype=np.uint8))
+    with pytest.raises(GraphError, match="unused labels"):
+        build_plane_graph(np.zeros((3, 3), dtype=np.int32), 2, np.zeros((3, 3, 3), dtype=np.uint8))
+    with pytest.raises(GraphError, match="colour_bins"):
+        build_plane_graph(np.zeros((3, 3), dtype=np.int32), 1, np.zeros((3, 3, 3), dtype=np.uint8), colour_bins=0)

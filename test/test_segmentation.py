@@ -1,0 +1,121 @@
+"""Felzenszwalb-Huttenlocher segmentation and exact-colour regions."""
+from __future__ import annotations
+
+import threading
+
+import cv2
+import numpy as np
+import pytest
+import skimage.data
+from scipy import ndimage as ndi
+from skimage.segmentation import felzenszwalb as skimage_felzenszwalb
+
+from trap_core.segmentation import SegmentationError, colour_components, felzenszwalb
+from trap_core.segmentation._kernels import felzenszwalb_kernel, relabel_4connected
+from trap_core.synthetic import SceneConfig, render
+
+NATURAL = ("astronaut", "coffee", "chelsea", "rocket")
+
+
+def _natural(name: str, size: tuple[int, int] = (320, 240)) -> np.ndarray:
+    return cv2.resize(getattr(skimage.data, name)(), size, interpolation=cv2.INTER_AREA)
+
+
+def _same_partition(a: np.ndarray, b: np.ndarray) -> bool:
+    """Two label images describe the same regions (labels may be numbered differently)."""
+    pairs = np.unique(np.column_stack([a.ravel(), b.ravel()]), axis=0)
+    return len(pairs) == len(np.unique(a)) == len(np.unique(b))
+
+
+def test_flat_colour_frames_give_exactly_the_colour_regions_like_skimage() -> None:
+    """Where the algorithms coincide (flat colours, no smoothing), labels are identical."""
+    frame = next(iter(render(SceneConfig(width=320, height=240, frames=1, seed=8))))
+    truth, _ = colour_components(frame.rgb)
+    for threshold, k in (("size", 1.0), ("constant", 1.0)):
+        mine, _ = felzenszwalb(frame.rgb, k=k, sigma=0, min_size=0, threshold=threshold)
+        assert _same_partition(mine, truth)
+    reference = skimage_felzenszwalb(frame.rgb, scale=1, sigma=0, min_size=0).astype(np.int32)
+    assert _same_partition(relabel_4connected(reference)[0], truth)
+
+
+def test_size_mode_region_counts_match_skimage_on_natural_images() -> None:
+    ours = theirs = 0
+    for name in NATURAL:
+        image = _natural(name)
+        smoothed = ndi.gaussian_filter(image.astype(np.float32), sigma=[0.8, 0.8, 0], mode="reflect")
+        for k in (100, 300, 1000):
+            ours += len(np.unique(felzenszwalb_kernel(smoothed, float(k), 20, True, 8)))
+            theirs += skimage_felzenszwalb(image, scale=k, sigma=0.8, min_size=20).max() + 1
+    assert abs(ours / theirs - 1) < 0.06, (ours, theirs)
+
+
+def test_constant_threshold_is_independent_of_region_size() -> None:
+    """tau = k treats a 2-pixel image and two 6000-pixel halves alike; tau = k/|C| does not."""
+    contrast = 12  # 12 * sqrt(3) ~ 20.8 colour units between the two sides
+    tiny = np.zeros((1, 2, 3), dtype=np.uint8)
+    tiny[:, 1:] = contrast
+    big = np.zeros((60, 200, 3), dtype=np.uint8)
+    big[:, 100:] = contrast
+    for image in (tiny, big):
+        assert felzenszwalb(image, k=25, sigma=0, min_size=0)[1] == 1
+        assert felzenszwalb(image, k=15, sigma=0, min_size=0)[1] == 2
+    assert felzenszwalb(tiny, k=200, sigma=0, min_size=0, threshold="size")[1] == 1
+    assert felzenszwalb(big, k=200, sigma=0, min_size=0, threshold="size")[1] == 2
+
+
+def test_regions_are_four_connected_and_compact() -> None:
+    image = _natural("astronaut")
+    for connectivity in (4, 8):
+        labels, n = felzenszwalb(image, k=10, connectivity=connectivity)
+        assert labels.dtype == np.int32 and labels.min() == 0 and labels.max() == n - 1
+        assert relabel_4connected(labels)[1] == n
+    labels, n = felzenszwalb(image, k=10, min_size=50)
+    assert np.bincount(labels.ravel()).min() >= 50 or n == 1
+
+
+def test_min_size_merges_small_regions() -> None:
+    image = _natural("coffee")
+    _, many = felzenszwalb(image, k=5, min_size=0)
+    _, few = felzenszwalb(image, k=5, min_size=100)
+    assert few < many
+
+
+def test_two_threads_give_the_same_labels() -> None:
+    images = [_natural(name) for name in NATURAL]
+    expected = [felzenszwalb(image)[0] for image in images]
+    results: dict[int, np.ndarray] = {}
+
+    def work(index: int) -> None:
+        results[index] = felzenszwalb(images[index])[0]
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(len(images))]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert all(np.array_equal(results[i], expected[i]) for i in range(len(images)))
+
+
+@pytest.mark.parametrize("kwargs,pattern", [
+    (dict(threshold="median"), "threshold must be"), (dict(k=-1), "k >= 0"),
+    (dict(sigma=float("nan")), "sigma >= 0"), (dict(connectivity=6), "connectivity"),
+])
+def test_bad_parameters(kwargs: dict, pattern: str) -> None:
+    with pytest.raises(SegmentationError, match=pattern):
+        felzenszwalb(np.zeros((4, 4, 3), dtype=np.uint8), **kwargs)
+
+
+def test_empty_image_is_refused() -> None:
+    with pytest.raises(SegmentationError, match="expected an"):
+        felzenszwalb(np.zeros((0, 5, 3), dtype=np.uint8))
+    with pytest.raises(SegmentationError, match="expected an"):
+        colour_components(np.zeros((5, 0, 3), dtype=np.uint8))
+
+
+def test_colour_components_split_same_colour_islands() -> None:
+    image = np.zeros((5, 5, 3), dtype=np.uint8)
+    image[0, 0] = image[4, 4] = 200
+    image[1, 1] = 200  # diagonal to (0, 0): a separate region under 4-adjacency
+    labels, n = colour_components(image)
+    assert n == 4
+    assert labels[0, 0] != labels[1, 1] != labels[4, 4]

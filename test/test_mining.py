@@ -1,0 +1,199 @@
+"""The miner against a brute-force oracle: face sets, plane isomorphism, frequencies, components."""
+from __future__ import annotations
+
+import itertools
+from collections import defaultdict
+
+import networkx as nx
+import numpy as np
+import pytest
+from networkx.algorithms.isomorphism import DiGraphMatcher
+
+from trap_core.mining import (MiningError, MiningParams, Occurrences, canonical_code, connected_face_sets,
+                              face_table, mine, occurrence_components)
+from trap_core.rag import build_plane_graph
+from trap_core.segmentation._kernels import relabel_4connected
+
+
+def _random_graph(rng: np.random.Generator, size: int = 9, labels: int = 5):
+    """A random plane graph: blocky random regions, node labels from 2 colours (so patterns repeat)."""
+    coarse = rng.integers(0, labels, size=(size // 3 + 1, size // 3 + 1))
+    fine = np.kron(coarse, np.ones((3, 3), dtype=np.int64))[:size, :size]
+    fine = np.where(rng.random(fine.shape) < 0.15, rng.integers(0, labels, fine.shape), fine)
+    region, n = relabel_4connected(fine.astype(np.int32))
+    palette = np.array([[30, 30, 30], [220, 220, 220]], dtype=np.uint8)
+    colour_of_region = rng.integers(0, 2, size=n)
+    rgb = palette[colour_of_region[region]]
+    return build_plane_graph(region, n, rgb, colour_bins=2)
+
+
+def _adjacent(graph, f: int, g: int) -> bool:
+    ring = graph.face_half_edges[graph.face_offsets[f]:graph.face_offsets[f + 1]]
+    return any(graph.face_of[graph.he_twin[h]] == g for h in ring)
+
+
+def _brute_force_sets(graph, faces: list[int], max_faces: int) -> set[frozenset[int]]:
+    found = set()
+    for size in range(1, max_faces + 1):
+        for subset in itertools.combinations(faces, size):
+            component = {subset[0]}
+            grew = True
+            while grew:
+                grew = False
+                for f in subset:
+                    if f not in component and any(_adjacent(graph, f, g) for g in component):
+                        component.add(f)
+                        grew = True
+            if len(component) == size:
+                found.add(frozenset(subset))
+    return found
+
+
+def _plane_digraph(graph, faces: frozenset[int]) -> nx.DiGraph:
+    """Half-edges of the face set, with face successor, twin and same-origin relations."""
+    ring = [int(h) for f in faces for h in graph.face_half_edges[graph.face_offsets[f]:graph.face_offsets[f + 1]]]
+    digraph = nx.DiGraph()
+    for h in ring:
+        twin = int(graph.he_twin[h])
+        digraph.add_node(h, label=int(graph.label[graph.he_origin[h]]), open=graph.face_of[twin] not in faces)
+    kinds: dict[tuple[int, int], set[str]] = defaultdict(set)
+    for h in ring:
+        twin = int(graph.he_twin[h])
+        kinds[(h, int(graph.he_next[twin]))].add("next")
+        if graph.face_of[twin] in faces:
+            kinds[(h, twin)].add("twin")
+        for other in ring:
+            if other != h and graph.he_origin[other] == graph.he_origin[h]:
+                kinds[(h, other)].add("same")
+    for (a, b), names in kinds.items():
+        digraph.add_edge(a, b, kinds=tuple(sorted(names)))
+    return digraph
+
+
+def _isomorphic(a: nx.DiGraph, b: nx.DiGraph) -> bool:
+    if a.number_of_nodes() != b.number_of_nodes() or a.number_of_edges() != b.number_of_edges():
+        return False
+    return DiGraphMatcher(a, b, node_match=lambda x, y: x == y, edge_match=lambda x, y: x == y).is_isomorphic()
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_connected_face_sets_are_all_and_only_the_connected_ones(seed: int) -> None:
+    graph = _random_graph(np.random.default_rng(seed))
+    table = face_table(graph)
+    allowed = {int(f) for f in table.inner}
+    enumerated = list(connected_face_sets(table, allowed, 3))
+    assert len(enumerated) == len(set(enumerated))
+    assert set(enumerated) == _brute_force_sets(graph, sorted(allowed), 3)
+
+
+def test_canonical_codes_decide_plane_isomorphism_like_the_oracle() -> None:
+    rng = np.random.default_rng(42)
+    occurrences = []
+    for _ in range(6):
+        graph = _random_graph(rng)
+        table = face_table(graph)
+        for faces in connected_face_sets(table, {int(f) for f in table.inner}, 2):
+            occurrences.append((canonical_code(graph, faces), _plane_digraph(graph, faces)))
+    assert len(occurrences) > 80
+    by_code = defaultdict(list)
+    for code, digraph in occurrences:
+        by_code[code].append(digraph)
+    representatives = [group[0] for group in by_code.values()]
+    for group in by_code.values():  # same code => isomorphic
+        assert all(_isomorphic(group[0], other) for other in group[1:])
+    for a, b in itertools.combinations(range(len(representatives)), 2):  # different codes => not
+        assert not _isomorphic(representatives[a], representatives[b])
+
+
+def test_rotating_the_image_keeps_codes_mirroring_changes_chiral_ones() -> None:
+    """Rotation renumbers every region and every start; codes stay. A mirror flips orientation."""
+    labels = np.array([[0, 0, 1, 1, 1],
+                       [0, 0, 1, 1, 1],
+                       [2, 2, 2, 3, 3],
+                       [2, 2, 2, 3, 3],
+                       [4, 4, 4, 4, 4]])
+    palette = np.array([[250, 0, 0], [0, 250, 0], [0, 0, 250], [250, 250, 0], [0, 250, 250]], dtype=np.uint8)
+
+    def codes(image: np.ndarray) -> set[tuple[int, ...]]:
+        region, n = relabel_4connected(np.ascontiguousarray(image, dtype=np.int32))
+        first_pixel = {int(region.ravel()[i]): int(image.ravel()[i]) for i in range(image.size)}
+        rgb = palette[np.vectorize(first_pixel.get)(region)]
+        graph = build_plane_graph(region, n, rgb, colour_bins=2)
+        table = face_table(graph)
+        return {canonical_code(graph, s) for s in connected_face_sets(table, {int(f) for f in table.inner}, 3)}
+
+    original = codes(labels)
+    assert original and codes(np.rot90(labels, 2)) == original
+    assert codes(np.rot90(labels, 1)) == original
+    assert codes(labels[:, ::-1]) != original  # a triangle of three colours is chiral
+
+
+def _naive_components(frames: np.ndarray, positions: np.ndarray, eps: float, tau: int) -> set[frozenset[int]]:
+    parent = list(range(len(frames)))
+
+    def find(i: int) -> int:
+        while parent[i] != i:
+            i = parent[i]
+        return i
+    for i, j in itertools.combinations(range(len(frames)), 2):
+        if 0 < abs(frames[i] - frames[j]) <= tau and np.hypot(*(positions[i] - positions[j])) <= eps:
+            parent[find(i)] = find(j)
+    groups = defaultdict(set)
+    for i in range(len(frames)):
+        groups[find(i)].add(i)
+    return {frozenset(g) for g in groups.values()}
+
+
+def test_occurrence_components_match_naive_linking() -> None:
+    rng = np.random.default_rng(5)
+    frames = rng.integers(0, 60, size=150)
+    positions = rng.uniform(0, 200, size=(150, 2))
+    occurrences = Occurrences(frames, positions, np.zeros((150, 4)), tuple(() for _ in range(150)))
+    mine_components = {frozenset(int(i) for i in c) for c in occurrence_components(occurrences, 30.0, 5)}
+    assert mine_components == _naive_components(frames, positions, 30.0, 5)
+
+
+def test_same_frame_occurrences_are_not_linked() -> None:
+    occurrences = Occurrences(np.array([0, 0]), np.array([[0.0, 0.0], [1.0, 0.0]]), np.zeros((2, 4)), ((), ()))
+    assert len(occurrence_components(occurrences, 10.0, 3)) == 2
+
+
+def test_mine_matches_brute_force_frequencies_and_components() -> None:
+    rng = np.random.default_rng(11)
+    graphs = [_random_graph(rng) for _ in range(8)]
+    params = MiningParams(eps=6.0, tau=2, freq_st_min=2, freq_min=3, max_faces=2)
+    result = mine(graphs, params)
+    # Oracle: every connected face set of every frame, grouped by plane isomorphism.
+    classes: list[tuple[nx.DiGraph, list[tuple[int, frozenset[int]]]]] = []
+    for t, graph in enumerate(graphs):
+        table = face_table(graph)
+        for faces in _brute_force_sets(graph, [int(f) for f in table.inner], 2):
+            digraph = _plane_digraph(graph, faces)
+            for representative, members in classes:
+                if _isomorphic(representative, digraph):
+                    members.append((t, faces))
+                    break
+            else:
+                classes.append((digraph, [(t, faces)]))
+    frequent = [members for _, members in classes if len({t for t, _ in members}) >= 3]
+    assert sorted(len({t for t, _ in m}) for m in frequent) == sorted(result.frequency)
+    expected = set()
+    for members in frequent:
+        frames = np.array([t for t, _ in members])
+        positions = np.array([graphs[t].centroid[face_table(graphs[t]).nodes(f)].mean(axis=0) for t, f in members])
+        for component in _naive_components(frames, positions, 6.0, 2):
+            if len({int(frames[i]) for i in component}) >= 2:
+                expected.add(frozenset((int(frames[i]), tuple(int(n) for n in face_table(graphs[int(frames[i])])
+                                                              .nodes(members[i][1]))) for i in component))
+    got = {frozenset(zip(p.occurrences.frame.tolist(), p.occurrences.nodes)) for p in result.patterns}
+    assert frequent and expected
+    assert got == expected
+
+
+def test_bad_parameters() -> None:
+    with pytest.raises(MiningError, match="eps"):
+        MiningParams(eps=0)
+    with pytest.raises(MiningError, match="at least 1"):
+        MiningParams(tau=0)
+    with pytest.raises(MiningError, match="freq_min"):
+        MiningParams(freq_min=0)

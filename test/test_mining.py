@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 from networkx.algorithms.isomorphism import DiGraphMatcher
 
-from trap_core.mining import (MiningError, MiningParams, Occurrences, canonical_code, connected_face_sets,
-                              face_table, mine, occurrence_components)
+from trap_core.mining import MiningError, MiningParams, mine
+from trap_core.mining.reference import (Occurrences, canonical_code, connected_face_sets, face_table, mine_reference,
+                                        occurrence_components)
 from trap_core.rag import build_plane_graph
 from trap_core.segmentation._kernels import relabel_4connected
 
@@ -162,7 +163,7 @@ def test_mine_matches_brute_force_frequencies_and_components() -> None:
     rng = np.random.default_rng(11)
     graphs = [_random_graph(rng) for _ in range(8)]
     params = MiningParams(eps=6.0, tau=2, freq_st_min=2, freq_min=3, max_faces=2)
-    result = mine(graphs, params)
+    result = mine_reference(graphs, params)
     # Oracle: every connected face set of every frame, grouped by plane isomorphism.
     classes: list[tuple[nx.DiGraph, list[tuple[int, frozenset[int]]]]] = []
     for t, graph in enumerate(graphs):
@@ -197,3 +198,46 @@ def test_bad_parameters() -> None:
         MiningParams(tau=0)
     with pytest.raises(MiningError, match="freq_min"):
         MiningParams(freq_min=0)
+
+
+def _node_sets(graphs, result) -> set[frozenset]:
+    def nodes(graph, faces):
+        return tuple(int(n) for n in np.unique(np.concatenate([graph.face_nodes(f) for f in faces if f >= 0])))
+    return {frozenset((int(result.occ_frame[r]), nodes(graphs[result.occ_frame[r]], result.occ_faces[r]))
+                      for r in result.st(s)) for s in range(result.n_st)}
+
+
+@pytest.mark.parametrize("max_faces", [1, 2, 3])
+def test_compiled_miner_equals_reference_on_random_graphs(max_faces: int) -> None:
+    rng = np.random.default_rng(20 + max_faces)
+    graphs = [_random_graph(rng, size=12) for _ in range(10)]
+    params = MiningParams(eps=8.0, tau=3, freq_st_min=2, freq_min=3, max_faces=max_faces)
+    reference = mine_reference(graphs, params)
+    compiled = mine(graphs, params)
+    assert sorted(compiled.pattern_frequency.tolist()) == sorted(reference.frequency)
+    assert compiled.n_st == len(reference.patterns) > 0
+    expected = {frozenset(zip(p.occurrences.frame.tolist(), p.occurrences.nodes)) for p in reference.patterns}
+    assert _node_sets(graphs, compiled) == expected
+    assert sorted(compiled.freq_st().tolist()) == sorted(p.freq_st for p in reference.patterns)
+
+
+def test_compiled_miner_equals_reference_on_a_synthetic_video() -> None:
+    from trap_core.segmentation import colour_components
+    from trap_core.synthetic import SceneConfig, render
+    frames = [f.rgb for f in render(SceneConfig(width=320, height=240, frames=30, seed=2))]
+    graphs = [build_plane_graph(*colour_components(rgb), rgb) for rgb in frames]
+    params = MiningParams(freq_st_min=8, max_faces=2)
+    reference = mine_reference(graphs, params)
+    compiled = mine(graphs, params, first_frame=100)
+    assert compiled.n_patterns == len(reference.codes) and compiled.n_st == len(reference.patterns) > 50
+    assert compiled.occ_frame.min() >= 100
+    shifted = type(compiled)(**{**compiled.__dict__, "occ_frame": compiled.occ_frame - 100})
+    expected = {frozenset(zip(p.occurrences.frame.tolist(), p.occurrences.nodes)) for p in reference.patterns}
+    assert _node_sets(graphs, shifted) == expected
+    # Geometry: the position is the mean barycentre of the occurrence's nodes, the box bounds its regions.
+    row = compiled.st(0)[0]
+    graph = graphs[compiled.occ_frame[row] - 100]
+    nodes = np.unique(np.concatenate([graph.face_nodes(f) for f in compiled.occ_faces[row] if f >= 0]))
+    np.testing.assert_allclose(compiled.occ_position[row], graph.centroid[nodes].mean(axis=0))
+    np.testing.assert_array_equal(compiled.occ_box[row], [graph.bbox[nodes, 0].min(), graph.bbox[nodes, 1].min(),
+                                                          graph.bbox[nodes, 2].max(), graph.bbox[nodes, 3].max()])

@@ -1,0 +1,349 @@
+"""Compiled kernels of the miner (numba, ``nogil``): inner faces, face-set enumeration,
+canonical codes, occurrence linking. :mod:`trap_core.mining.miner` drives them;
+:mod:`trap_core.mining.reference` is the readable version they are tested against.
+"""
+from __future__ import annotations
+
+import numba as nb
+import numpy as np
+
+# Token kinds of a traversal code (same as the reference implementation).
+_NEW_NODE, _SEEN_NODE, _FACE, _OPEN, _END = 0, 1, 2, 3, 4
+_MASK64 = np.uint64(0xFFFFFFFFFFFFFFFF)
+
+
+@nb.njit(cache=True, nogil=True)
+def inner_faces(he_origin, face_half_edges, face_offsets, outside):
+    """(F,) bool: face avoids the outside node and has at least three distinct nodes."""
+    n_faces = face_offsets.size - 1
+    inner = np.zeros(n_faces, dtype=np.bool_)
+    for f in range(n_faces):
+        start, stop = face_offsets[f], face_offsets[f + 1]
+        ok = True
+        distinct = 0
+        for a in range(start, stop):
+            node = he_origin[face_half_edges[a]]
+            if node == outside:
+                ok = False
+                break
+            repeated = False
+            for b in range(start, a):
+                if he_origin[face_half_edges[b]] == node:
+                    repeated = True
+                    break
+            if not repeated:
+                distinct += 1
+        inner[f] = ok and distinct >= 3
+    return inner
+
+
+@nb.njit(cache=True, nogil=True)
+def face_adjacency(he_twin, face_of, face_half_edges, face_offsets, usable):
+    """CSR adjacency between usable faces sharing an edge (each neighbour once)."""
+    n_faces = face_offsets.size - 1
+    offsets = np.zeros(n_faces + 1, dtype=np.int64)
+    targets = np.empty(face_half_edges.size, dtype=np.int64)
+    count = 0
+    for f in range(n_faces):
+        if usable[f]:
+            for a in range(face_offsets[f], face_offsets[f + 1]):
+                g = face_of[he_twin[face_half_edges[a]]]
+                if g == f or not usable[g]:
+                    continue
+                seen = False
+                for b in range(offsets[f], count):
+                    if targets[b] == g:
+                        seen = True
+                        break
+                if not seen:
+                    targets[count] = g
+                    count += 1
+        offsets[f + 1] = count
+    return offsets, targets[:count]
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _in(values, length, x):
+    for i in range(length):
+        if values[i] == x:
+            return i
+    return -1
+
+
+@nb.njit(cache=True, nogil=True)
+def _traverse(start, faces, n_faces, he_origin, he_twin, he_next, face_of, face_offsets, label,
+              tokens, best, best_len, queue, face_ids, node_ids):
+    """Write the traversal code from half-edge ``start`` into ``tokens``; stop early (return -1)
+    as soon as it is larger than ``best[:best_len]`` (best_len < 0: no best yet)."""
+    n_face_ids = 1
+    face_ids[0] = face_of[start]
+    queue[0] = start
+    n_queue = 1
+    n_nodes = 0
+    pos = 0
+    smaller = best_len < 0
+    q = 0
+    while q < n_queue:
+        entry = queue[q]
+        q += 1
+        h = entry
+        while True:
+            node = he_origin[h]
+            k = _in(node_ids, n_nodes, node)
+            if k >= 0:
+                tokens[pos] = _SEEN_NODE
+                tokens[pos + 1] = k
+            else:
+                node_ids[n_nodes] = node
+                n_nodes += 1
+                tokens[pos] = _NEW_NODE
+                tokens[pos + 1] = label[node]
+            twin = he_twin[h]
+            across = face_of[twin]
+            if _in(faces, n_faces, across) >= 0:
+                k = _in(face_ids, n_face_ids, across)
+                if k < 0:
+                    k = n_face_ids
+                    face_ids[n_face_ids] = across
+                    n_face_ids += 1
+                    queue[n_queue] = twin
+                    n_queue += 1
+                tokens[pos + 2] = _FACE
+                tokens[pos + 3] = k
+            else:
+                tokens[pos + 2] = _OPEN
+                tokens[pos + 3] = 0
+            if not smaller:
+                for i in range(pos, pos + 4):
+                    if i >= best_len or tokens[i] > best[i]:
+                        return -1
+                    if tokens[i] < best[i]:
+                        smaller = True
+                        break
+            pos += 4
+            h = he_next[twin]
+            if h == entry:
+                break
+        tokens[pos] = _END
+        tokens[pos + 1] = 0
+        if not smaller:
+            for i in range(pos, pos + 2):
+                if i >= best_len or tokens[i] > best[i]:
+                    return -1
+                if tokens[i] < best[i]:
+                    smaller = True
+                    break
+        pos += 2
+    if not smaller:  # equal to the best so far
+        return -1
+    return pos
+
+
+@nb.njit(cache=True, nogil=True)
+def code_hash(faces, n_faces, he_origin, he_twin, he_next, face_of, face_half_edges, face_offsets, label,
+              tokens, best, queue, face_ids, node_ids):
+    """64-bit hash of the canonical code (smallest traversal code over all starts) of a face set."""
+    best_len = -1
+    for i in range(n_faces):
+        f = faces[i]
+        for a in range(face_offsets[f], face_offsets[f + 1]):
+            length = _traverse(face_half_edges[a], faces, n_faces, he_origin, he_twin, he_next, face_of,
+                               face_offsets, label, tokens, best, best_len, queue, face_ids, node_ids)
+            if length >= 0:
+                best[:length] = tokens[:length]
+                best_len = length
+    value = np.uint64(0x9E3779B97F4A7C15) ^ np.uint64(best_len)
+    for i in range(best_len):  # splitmix64-style mixing of each token
+        value = (value ^ np.uint64(best[i] + 0x632BE59BD9B4E019)) * np.uint64(0xBF58476D1CE4E5B9)
+        value ^= value >> np.uint64(31)
+    return np.int64(value & np.uint64(0x7FFFFFFFFFFFFFFF))
+
+
+@nb.njit(cache=True, nogil=True)
+def single_face_hashes(he_origin, he_twin, he_next, face_of, face_half_edges, face_offsets, label, inner):
+    """Code hash of every inner face alone (-1 for other faces)."""
+    n_faces = face_offsets.size - 1
+    longest = 1
+    for f in range(n_faces):
+        longest = max(longest, face_offsets[f + 1] - face_offsets[f])
+    tokens = np.empty(6 * longest + 8, dtype=np.int64)
+    best = np.empty_like(tokens)
+    queue = np.empty(2, dtype=np.int64)
+    face_ids = np.empty(2, dtype=np.int64)
+    node_ids = np.empty(longest + 1, dtype=np.int64)
+    faces = np.empty(1, dtype=np.int64)
+    hashes = np.full(n_faces, -1, dtype=np.int64)
+    for f in range(n_faces):
+        if inner[f]:
+            faces[0] = f
+            hashes[f] = code_hash(faces, 1, he_origin, he_twin, he_next, face_of, face_half_edges, face_offsets,
+                                  label, tokens, best, queue, face_ids, node_ids)
+    return hashes
+
+
+@nb.njit(cache=True, nogil=True)
+def enumerate_face_sets(max_faces, allowed, adj_offsets, adj_targets, he_origin, he_twin, he_next, face_of,
+                        face_half_edges, face_offsets, label, single_hash):
+    """Every connected set of at most ``max_faces`` allowed faces (ESU: each set once, rooted at
+    its smallest face), with its code hash. Returns (hashes, sets padded with -1)."""
+    n_faces = face_offsets.size - 1
+    longest = 1
+    max_degree = 1
+    for f in range(n_faces):
+        longest = max(longest, face_offsets[f + 1] - face_offsets[f])
+        max_degree = max(max_degree, adj_offsets[f + 1] - adj_offsets[f])
+    cap_tokens = max_faces * (6 * longest + 2) + 8
+    tokens = np.empty(cap_tokens, dtype=np.int64)
+    best = np.empty_like(tokens)
+    queue = np.empty(max_faces + 1, dtype=np.int64)
+    face_ids = np.empty(max_faces + 1, dtype=np.int64)
+    node_ids = np.empty(max_faces * longest + 1, dtype=np.int64)
+    sub = np.empty(max_faces, dtype=np.int64)
+    max_ext = max_faces * max_degree + 1
+    ext = np.empty((max_faces, max_ext), dtype=np.int64)
+    ext_len = np.zeros(max_faces, dtype=np.int64)
+    cap = 1024
+    out_hash = np.empty(cap, dtype=np.int64)
+    out_sets = np.full((cap, max_faces), -1, dtype=np.int64)
+    count = 0
+    for root in range(n_faces):
+        if not allowed[root]:
+            continue
+        sub[0] = root
+        if count == cap:
+            cap *= 2
+            out_hash, out_sets = _grow_sets(out_hash, out_sets, cap)
+        out_hash[count] = single_hash[root]
+        out_sets[count, 0] = root
+        count += 1
+        ext_len[0] = 0
+        for a in range(adj_offsets[root], adj_offsets[root + 1]):
+            u = adj_targets[a]
+            if allowed[u] and u > root:
+                ext[0, ext_len[0]] = u
+                ext_len[0] += 1
+        depth = 0  # sub[:depth + 1] is the current set, ext[depth] its extension
+        while depth >= 0:
+            if depth + 1 == max_faces or ext_len[depth] == 0:
+                depth -= 1
+                continue
+            ext_len[depth] -= 1
+            w = ext[depth, ext_len[depth]]
+            n = ext_len[depth]
+            ext[depth + 1, :n] = ext[depth, :n]
+            for a in range(adj_offsets[w], adj_offsets[w + 1]):
+                u = adj_targets[a]
+                if not allowed[u] or u <= root or _in(sub, depth + 1, u) >= 0:
+                    continue
+                closed = False
+                for i in range(depth + 1):
+                    s = sub[i]
+                    for b in range(adj_offsets[s], adj_offsets[s + 1]):
+                        if adj_targets[b] == u:
+                            closed = True
+                            break
+                    if closed:
+                        break
+                if not closed:
+                    ext[depth + 1, n] = u
+                    n += 1
+            ext_len[depth + 1] = n
+            sub[depth + 1] = w
+            depth += 1
+            if count == cap:
+                cap *= 2
+                out_hash, out_sets = _grow_sets(out_hash, out_sets, cap)
+            out_hash[count] = code_hash(sub, depth + 1, he_origin, he_twin, he_next, face_of, face_half_edges,
+                                        face_offsets, label, tokens, best, queue, face_ids, node_ids)
+            out_sets[count, :depth + 1] = sub[:depth + 1]
+            count += 1
+    return out_hash[:count], out_sets[:count]
+
+
+@nb.njit(cache=True, nogil=True)
+def _grow_sets(hashes, sets, cap):
+    new_hashes = np.empty(cap, dtype=np.int64)
+    new_sets = np.full((cap, sets.shape[1]), -1, dtype=np.int64)
+    new_hashes[: hashes.size] = hashes
+    new_sets[: sets.shape[0]] = sets
+    return new_hashes, new_sets
+
+
+@nb.njit(cache=True, nogil=True)
+def occurrence_geometry(sets, he_origin, face_half_edges, face_offsets, centroid, bbox):
+    """Per face set: mean barycentre of its distinct nodes, box of their regions, box of their
+    barycentres (x0, y0, x1, y1), and node count."""
+    count, width = sets.shape
+    position = np.empty((count, 2), dtype=np.float64)
+    box = np.empty((count, 4), dtype=np.float64)
+    node_box = np.empty((count, 4), dtype=np.float64)
+    nodes = np.empty(64, dtype=np.int64)
+    for r in range(count):
+        n = 0
+        for i in range(width):
+            f = sets[r, i]
+            if f < 0:
+                break
+            for a in range(face_offsets[f], face_offsets[f + 1]):
+                node = he_origin[face_half_edges[a]]
+                if _in(nodes, n, node) < 0:
+                    if n == nodes.size:
+                        bigger = np.empty(2 * n, dtype=np.int64)
+                        bigger[:n] = nodes
+                        nodes = bigger
+                    nodes[n] = node
+                    n += 1
+        sx = sy = 0.0
+        box[r, 0] = box[r, 1] = node_box[r, 0] = node_box[r, 1] = 1e18
+        box[r, 2] = box[r, 3] = node_box[r, 2] = node_box[r, 3] = -1e18
+        for i in range(n):
+            node = nodes[i]
+            x, y = centroid[node, 0], centroid[node, 1]
+            sx += x
+            sy += y
+            node_box[r, 0] = min(node_box[r, 0], x)
+            node_box[r, 1] = min(node_box[r, 1], y)
+            node_box[r, 2] = max(node_box[r, 2], x)
+            node_box[r, 3] = max(node_box[r, 3], y)
+            box[r, 0] = min(box[r, 0], bbox[node, 0])
+            box[r, 1] = min(box[r, 1], bbox[node, 1])
+            box[r, 2] = max(box[r, 2], bbox[node, 2])
+            box[r, 3] = max(box[r, 3], bbox[node, 3])
+        position[r, 0] = sx / n
+        position[r, 1] = sy / n
+    return position, box, node_box
+
+
+@nb.njit(cache=True, nogil=True)
+def _root(parent, i):
+    while parent[i] != i:
+        parent[i] = parent[parent[i]]
+        i = parent[i]
+    return i
+
+
+@nb.njit(cache=True, nogil=True)
+def link_occurrences(group_start, frame, position, eps, tau):
+    """Union-find component of each occurrence. Occurrences are sorted by (pattern, frame);
+    ``group_start`` bounds each pattern. Linked: same pattern, 0 < frame gap <= tau, distance <= eps."""
+    count = frame.size
+    parent = np.arange(count)
+    eps2 = eps * eps
+    for g in range(group_start.size - 1):
+        lo, hi = group_start[g], group_start[g + 1]
+        for i in range(lo, hi):
+            for j in range(i + 1, hi):
+                gap = frame[j] - frame[i]
+                if gap > tau:
+                    break
+                if gap == 0:
+                    continue
+                dx = position[i, 0] - position[j, 0]
+                dy = position[i, 1] - position[j, 1]
+                if dx * dx + dy * dy <= eps2:
+                    ri, rj = _root(parent, i), _root(parent, j)
+                    if ri != rj:
+                        parent[max(ri, rj)] = min(ri, rj)
+    for i in range(count):
+        parent[i] = _root(parent, i)
+    return parent

@@ -1,0 +1,49 @@
+"""What the miner returns: occurrences as parallel arrays, spatio-temporal patterns as row groups."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class MiningResult:
+    """Frequent plane patterns, their kept occurrences, and the spatio-temporal patterns.
+
+    Occurrence ``r`` is the face set ``occ_faces[r]`` (graph face ids, -1 padded) of frame
+    ``occ_frame[r]``, an occurrence of plane pattern ``occ_pattern[r]``. Spatio-temporal
+    pattern ``s`` is the rows ``st_rows[st_offsets[s]:st_offsets[s + 1]]`` (sorted by frame).
+    """
+
+    pattern_hash: np.ndarray       # (P,) int64 hash of each plane pattern's canonical code
+    pattern_frequency: np.ndarray  # (P,) freq(P): frames with an occurrence
+    pattern_faces: np.ndarray      # (P,) faces per pattern
+    occ_frame: np.ndarray          # (N,) int64
+    occ_pattern: np.ndarray        # (N,) int64
+    occ_position: np.ndarray       # (N, 2) mean barycentre of the occurrence's nodes
+    occ_box: np.ndarray            # (N, 4) x0, y0, x1, y1 of its regions' pixels (inclusive)
+    occ_node_box: np.ndarray       # (N, 4) extent of its nodes' barycentres
+    occ_faces: np.ndarray          # (N, max_faces) face ids in the frame's graph, -1 padded
+    st_pattern: np.ndarray         # (S,) plane pattern of each spatio-temporal pattern
+    st_offsets: np.ndarray         # (S+1,)
+    st_rows: np.ndarray            # occurrence rows of all spatio-temporal patterns
+
+    @property
+    def n_patterns(self) -> int:
+        return int(self.pattern_hash.size)
+
+    @property
+    def n_st(self) -> int:
+        return int(self.st_pattern.size)
+
+    def st(self, index: int) -> np.ndarray:
+        """Occurrence rows of spatio-temporal pattern ``index``."""
+        return self.st_rows[self.st_offsets[index]:self.st_offsets[index + 1]]
+
+    def freq_st(self) -> np.ndarray:
+        """(S,) distinct frames of each spatio-temporal pattern."""
+        frames = self.occ_frame[self.st_rows]
+        owner = np.repeat(np.arange(self.n_st), np.diff(self.st_offsets))
+        distinct = np.ones(frames.size, dtype=bool)
+        distinct[1:] = (frames[1:] != frames[:-1]) | (owner[1:] != owner[:-1])
+        return np.bincount(owner[distinct], minlength=self.n_st)

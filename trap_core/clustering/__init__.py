@@ -1,0 +1,25 @@
+"""Spatio-temporal patterns to tracks: trajectories, distance, hierarchy, lifetime cut, selection."""
+
+from trap_core.clustering.distance import pattern_distances
+from trap_core.clustering.errors import ClusteringError
+from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns, labels_after_merges, lifetime_cut
+from trap_core.clustering.selection import ClusterSummary, select_clusters, summarise
+from trap_core.clustering.tracks import Track, build_track
+from trap_core.clustering.trajectory import Trajectories, trajectories
+
+__all__ = [
+    "LINKAGES",
+    "ClusterSummary",
+    "ClusteringError",
+    "Hierarchy",
+    "Track",
+    "Trajectories",
+    "build_track",
+    "cluster_patterns",
+    "labels_after_merges",
+    "lifetime_cut",
+    "pattern_distances",
+    "select_clusters",
+    "summarise",
+    "trajectories",
+]

@@ -1,0 +1,96 @@
+"""Which clusters are tracks (TRAP_SPEC section 7)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from trap_core.clustering._kernels import pairwise_distance
+from trap_core.clustering.trajectory import Trajectories
+
+
+@dataclass(frozen=True)
+class ClusterSummary:
+    """Per cluster: frames covered by its patterns, pattern and occurrence counts, mean path."""
+
+    covered: np.ndarray       # (C, n_frames) bool
+    n_patterns: np.ndarray    # (C,)
+    n_occurrences: np.ndarray  # (C,)
+    paths: Trajectories       # mean trajectory of each cluster's patterns, per covered frame
+
+    @property
+    def length(self) -> np.ndarray:
+        return self.covered.sum(axis=1)
+
+
+def summarise(labels: np.ndarray, tracks: Trajectories, occurrences_per_pattern: np.ndarray,
+              n_frames: int) -> ClusterSummary:
+    """Length, counts and mean path of each cluster (labels 0..C-1 over the patterns)."""
+    n_clusters = int(labels.max()) + 1 if labels.size else 0
+    covered = np.zeros((n_clusters, n_frames), dtype=bool)
+    sums = np.zeros((n_clusters, n_frames, 2))
+    counts = np.zeros((n_clusters, n_frames))
+    for pattern, cluster in enumerate(labels):
+        span = slice(tracks.start[pattern], tracks.end[pattern] + 1)
+        covered[cluster, span] = True
+        sums[cluster, span] += tracks.of(pattern)
+        counts[cluster, span] += 1
+    starts, ends, pieces = [], [], []
+    for cluster in range(n_clusters):
+        frames = np.flatnonzero(covered[cluster])
+        span = np.arange(frames[0], frames[-1] + 1)
+        mean = sums[cluster, frames] / counts[cluster, frames, None]
+        pieces.append(np.column_stack([np.interp(span, frames, mean[:, axis]) for axis in (0, 1)]))
+        starts.append(frames[0])
+        ends.append(frames[-1])
+    sizes = np.array([len(p) for p in pieces], dtype=np.int64)
+    paths = Trajectories(np.array(starts, dtype=np.int64), np.array(ends, dtype=np.int64),
+                         np.r_[0, np.cumsum(sizes)].astype(np.int64),
+                         np.concatenate(pieces) if pieces else np.empty((0, 2)))
+    return ClusterSummary(covered, np.bincount(labels, minlength=n_clusters),
+                          np.bincount(labels, weights=occurrences_per_pattern, minlength=n_clusters).astype(np.int64),
+                          paths)
+
+
+def _longest(summary: ClusterSummary, candidates: np.ndarray, tolerance_frames: float) -> int:
+    """The paper's "longest": within ``tolerance_frames`` of the longest, most patterns, then most occurrences."""
+    lengths = summary.length[candidates]
+    near = candidates[lengths >= lengths.max() - tolerance_frames]
+    order = np.lexsort((-summary.n_occurrences[near], -summary.n_patterns[near]))
+    return int(near[order[0]])
+
+
+def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | None = None,
+                    tolerance: float = 0.1, min_length: float = 0.25, separation: float = 40.0,
+                    max_objects: int = 20) -> list[int]:
+    """Clusters that are tracks, in order of selection.
+
+    With ``n_objects``: the ``n_objects`` longest clusters, one after another (the paper).
+    Without (ours, unsupervised): keep taking the next longest cluster while it covers at
+    least ``min_length`` of the video, skipping any cluster whose mean path comes within
+    ``separation`` pixels (the pattern distance of TRAP_SPEC section 5) of one already kept:
+    "the longest clusters that are far enough from each other".
+    """
+    remaining = np.arange(summary.length.size)
+    chosen: list[int] = []
+    limit = n_objects if n_objects is not None else max_objects
+    while remaining.size and len(chosen) < limit:
+        best = _longest(summary, remaining, tolerance * n_frames)
+        remaining = remaining[remaining != best]
+        if n_objects is None:
+            if summary.length[best] < min_length * n_frames:
+                break
+            if chosen and _closest(summary.paths, best, chosen) <= separation:
+                continue
+        chosen.append(best)
+    return chosen
+
+
+def _closest(paths: Trajectories, cluster: int, others: list[int]) -> float:
+    """Smallest pattern distance between the mean path of ``cluster`` and those of ``others``."""
+    index = [cluster, *others]
+    sub = Trajectories(paths.start[index], paths.end[index],
+                       np.r_[0, np.cumsum(paths.end[index] - paths.start[index] + 1)].astype(np.int64),
+                       np.concatenate([paths.of(i) for i in index]))
+    condensed = pairwise_distance(sub.start, sub.end, sub.offsets, sub.points)
+    return float(condensed[: len(others)].min())

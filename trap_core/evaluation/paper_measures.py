@@ -1,0 +1,47 @@
+"""The paper's precision and recall (TRAP_SPEC section 8).
+
+Ground truth is a dict ``{frame: (x, y, w, h)}`` for one object (frames 0-based here).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from trap_core.mining import MiningResult
+
+
+def _inside(node_box: np.ndarray, gt: np.ndarray) -> np.ndarray:
+    """Occurrences whose node barycentres all lie inside the ground-truth box of their frame."""
+    x, y, w, h = gt.T
+    return (node_box[:, 0] >= x) & (node_box[:, 1] >= y) & (node_box[:, 2] <= x + w - 1) & (node_box[:, 3] <= y + h - 1)
+
+
+def cluster_precision_recall(result: MiningResult, patterns: np.ndarray, truth: dict[int, tuple]) -> tuple[float, float]:
+    """Cluster precision: share of the cluster's occurrences whose nodes all lie in the ground-truth
+    box of their frame (no box: outside). Recall: share of annotated frames with at least one
+    such occurrence."""
+    rows = np.concatenate([result.st(s) for s in patterns]) if len(patterns) else np.empty(0, np.int64)
+    if rows.size == 0 or not truth:
+        return 0.0, 0.0
+    frames = result.occ_frame[rows]
+    annotated = np.array([f in truth for f in frames.tolist()])
+    gt = np.array([truth.get(f, (0, 0, 0, 0)) for f in frames.tolist()], dtype=float)
+    good = annotated & _inside(result.occ_node_box[rows], gt)
+    return float(good.mean()), len(set(frames[good].tolist())) / len(truth)
+
+
+def box_precision_recall(track: dict[int, tuple], truth: dict[int, tuple]) -> tuple[float, float]:
+    """Box tracker measures: precision = area shared with the ground truth / area of the track
+    boxes; recall = share of annotated frames where the track box's centre lies in the truth box."""
+    shared = total = 0.0
+    hits = 0
+    for frame, (x, y, w, h) in track.items():
+        total += w * h
+        if frame in truth:
+            gx, gy, gw, gh = truth[frame]
+            ix = max(0.0, min(x + w, gx + gw) - max(x, gx))
+            iy = max(0.0, min(y + h, gy + gh) - max(y, gy))
+            shared += ix * iy
+            cx, cy = x + w / 2, y + h / 2
+            hits += gx <= cx <= gx + gw and gy <= cy <= gy + gh
+    precision = shared / total if total else 0.0
+    return precision, hits / len(truth) if truth else 0.0

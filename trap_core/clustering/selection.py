@@ -88,9 +88,6 @@ def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | Non
 
 def _closest(paths: Trajectories, cluster: int, others: list[int]) -> float:
     """Smallest pattern distance between the mean path of ``cluster`` and those of ``others``."""
-    index = [cluster, *others]
-    sub = Trajectories(paths.start[index], paths.end[index],
-                       np.r_[0, np.cumsum(paths.end[index] - paths.start[index] + 1)].astype(np.int64),
-                       np.concatenate([paths.of(i) for i in index]))
+    sub = paths.subset(np.array([cluster, *others]))
     condensed = pairwise_distance(sub.start, sub.end, sub.offsets, sub.points)
     return float(condensed[: len(others)].min())

@@ -1,11 +1,13 @@
 """Tracks: per-frame boxes of the selected clusters (TRAP_SPEC section 7)."""
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from trap_core.mining import MiningResult
+from trap_core.rag import PlaneGraph
 
 
 @dataclass(frozen=True)
@@ -22,8 +24,14 @@ class Track:
         return int(self.frames.size)
 
 
-def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, track_id: int) -> Track:
+def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, track_id: int,
+                graphs: Sequence[PlaneGraph] | None = None, core_share: float = 0.0) -> Track:
     """Box of the cluster in each frame: around the regions of its patterns' occurrences there.
+
+    With ``graphs`` and ``core_share > 0`` (ours), only the regions found in at least that
+    share of the frame's occurrences count (as many as the most shared region): a pattern that
+    mixes the object with a background region it passes over then does not stretch the box
+    to that whole background region.
 
     Confidence: the number of the cluster's patterns seen in the frame over the most seen in
     any frame (1 where the object shows all its structure).
@@ -42,7 +50,23 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     np.minimum.at(y0, inverse, boxes[:, 1])
     np.maximum.at(x1, inverse, boxes[:, 2])
     np.maximum.at(y1, inverse, boxes[:, 3])
+    if graphs is not None and core_share > 0:
+        for slot, frame in enumerate(known):
+            x0[slot], y0[slot], x1[slot], y1[slot] = _core_box(graphs[frame], result.occ_faces[rows[inverse == slot]],
+                                                               core_share)
     seen = np.unique(np.column_stack([inverse, owner]), axis=0)[:, 0]
     per_frame = np.bincount(seen, minlength=known.size).astype(float)
     score = per_frame / per_frame.max() if per_frame.size else per_frame
     return Track(track_id, known, np.column_stack([x0, y0, x1 - x0 + 1, y1 - y0 + 1]), score, cluster)
+
+
+def _core_box(graph: PlaneGraph, face_sets: np.ndarray, share: float) -> tuple[float, float, float, float]:
+    """Box around the regions that most of the occurrences (face sets) of one frame contain."""
+    counts: dict[int, int] = {}
+    for faces in face_sets:
+        for node in np.unique(np.concatenate([graph.face_nodes(f) for f in faces if f >= 0])).tolist():
+            counts[node] = counts.get(node, 0) + 1
+    top = max(counts.values())
+    core = np.array([node for node, count in counts.items() if count >= share * top])
+    boxes = graph.bbox[core]
+    return boxes[:, 0].min(), boxes[:, 1].min(), boxes[:, 2].max(), boxes[:, 3].max()

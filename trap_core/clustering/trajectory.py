@@ -28,6 +28,12 @@ class Trajectories:
     def __len__(self) -> int:
         return int(self.start.size)
 
+    def subset(self, index: np.ndarray) -> Trajectories:
+        """The trajectories of patterns ``index``, renumbered 0..len(index)-1."""
+        sizes = self.end[index] - self.start[index] + 1
+        points = np.concatenate([self.of(i) for i in index]) if len(index) else np.empty((0, 2))
+        return Trajectories(self.start[index], self.end[index], np.r_[0, np.cumsum(sizes)].astype(np.int64), points)
+
 
 def trajectories(result: MiningResult) -> Trajectories:
     """Build the trajectory of every spatio-temporal pattern of ``result``."""

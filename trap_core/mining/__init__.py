@@ -2,7 +2,7 @@
 
 from trap_core.mining.errors import MiningError
 from trap_core.mining.miner import mine
-from trap_core.mining.params import MiningParams
+from trap_core.mining.params import LINKINGS, MiningParams
 from trap_core.mining.result import MiningResult
 
-__all__ = ["MiningError", "MiningParams", "MiningResult", "mine"]
+__all__ = ["LINKINGS", "MiningError", "MiningParams", "MiningResult", "mine"]

@@ -347,3 +347,80 @@ def link_occurrences(group_start, frame, position, eps, tau):
     for i in range(count):
         parent[i] = _root(parent, i)
     return parent
+
+
+@nb.njit(cache=True, nogil=True)
+def assign_occurrences(group_start, frame, position, eps, tau):
+    """One object, one path (ours, TRAP_SPEC section 10): chain each pattern's occurrences frame by
+    frame, each occurrence continuing at most one chain and each chain taking at most one
+    occurrence per frame. A chain predicts its next position from its last velocity; pairs are
+    taken in order of distance to the prediction, within ``eps``; a chain waits up to ``tau``
+    frames for its next occurrence. Returns the chain of each occurrence (sorted input order).
+    """
+    count = frame.size
+    chain = np.full(count, -1, dtype=np.int64)
+    last_frame = np.empty(count, dtype=np.int64)
+    last_x = np.empty(count)
+    last_y = np.empty(count)
+    vel_x = np.zeros(count)
+    vel_y = np.zeros(count)
+    n_chains = 0
+    eps2 = eps * eps
+    for g in range(group_start.size - 1):
+        lo, hi = group_start[g], group_start[g + 1]
+        active = np.empty(hi - lo, dtype=np.int64)
+        n_active = 0
+        i = lo
+        while i < hi:
+            j = i
+            while j < hi and frame[j] == frame[i]:
+                j += 1
+            t = frame[i]
+            keep = 0
+            for a in range(n_active):  # drop chains that waited too long
+                if t - last_frame[active[a]] <= tau:
+                    active[keep] = active[a]
+                    keep += 1
+            n_active = keep
+            n_pairs = 0
+            costs = np.empty((j - i) * max(n_active, 1))
+            occ = np.empty_like(costs, dtype=np.int64)
+            chn = np.empty_like(costs, dtype=np.int64)
+            for k in range(i, j):
+                for a in range(n_active):
+                    c = active[a]
+                    dt = t - last_frame[c]
+                    dx = position[k, 0] - (last_x[c] + vel_x[c] * dt)
+                    dy = position[k, 1] - (last_y[c] + vel_y[c] * dt)
+                    d2 = dx * dx + dy * dy
+                    if d2 <= eps2:
+                        costs[n_pairs] = d2
+                        occ[n_pairs] = k
+                        chn[n_pairs] = c
+                        n_pairs += 1
+            order = np.argsort(costs[:n_pairs])
+            taken = np.zeros(n_chains + (j - i), dtype=np.bool_)
+            for p in order:
+                k, c = occ[p], chn[p]
+                if chain[k] >= 0 or taken[c]:
+                    continue
+                chain[k] = c
+                taken[c] = True
+                dt = t - last_frame[c]
+                vel_x[c] = 0.5 * vel_x[c] + 0.5 * (position[k, 0] - last_x[c]) / dt
+                vel_y[c] = 0.5 * vel_y[c] + 0.5 * (position[k, 1] - last_y[c]) / dt
+                last_frame[c] = t
+                last_x[c] = position[k, 0]
+                last_y[c] = position[k, 1]
+            for k in range(i, j):
+                if chain[k] < 0:
+                    c = n_chains
+                    n_chains += 1
+                    chain[k] = c
+                    last_frame[c] = t
+                    last_x[c] = position[k, 0]
+                    last_y[c] = position[k, 1]
+                    active[n_active] = c
+                    n_active += 1
+            i = j
+    return chain

@@ -4,7 +4,9 @@ TRAP_SPEC section 3. A pattern P (a connected set of at most ``max_faces`` inner
 frequent when ``freq(P)``, the number of frames holding an occurrence, reaches ``freq_min``.
 Occurrences are linked when they lie in different frames at most ``tau`` apart and within
 ``eps`` pixels; each connected component of that occurrence graph is a spatio-temporal
-pattern, kept when it spans at least ``freq_st_min`` distinct frames.
+pattern, kept when it spans at least ``freq_st_min`` distinct frames. With
+``linking="assignment"`` (ours) occurrences are chained one to one instead, so the
+occurrences of look-alike objects that pass close to each other stay apart.
 
 Exact: a pattern with an infrequent face cannot be frequent (freq is anti-monotone), so only
 frequent faces are grown, and every frequent pattern is found. Patterns are identified by a
@@ -17,8 +19,8 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from trap_core.mining._kernels import (enumerate_face_sets, face_adjacency, inner_faces, link_occurrences,
-                                       occurrence_geometry, single_face_hashes)
+from trap_core.mining._kernels import (assign_occurrences, enumerate_face_sets, face_adjacency, inner_faces,
+                                       link_occurrences, occurrence_geometry, single_face_hashes)
 from trap_core.mining.params import MiningParams
 from trap_core.mining.result import MiningResult
 from trap_core.rag import PlaneGraph
@@ -88,7 +90,8 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
     pattern = np.searchsorted(pattern_hash, hashes)
     order = np.lexsort((frames, pattern))
     starts = np.searchsorted(pattern[order], np.arange(pattern_hash.size + 1))
-    component = link_occurrences(starts, frames[order], position[order], float(params.eps), int(params.tau))
+    link = assign_occurrences if params.linking == "assignment" else link_occurrences
+    component = link(starts, frames[order], position[order], float(params.eps), int(params.tau))
     st_pattern, st_offsets, st_rows = _components(component, pattern[order], frames[order], order,
                                                   params.freq_st_min)
     pattern_faces = np.zeros(pattern_hash.size, dtype=np.int64)

@@ -7,6 +7,8 @@ import numpy as np
 
 from trap_core.mining.errors import MiningError
 
+LINKINGS = ("graph", "assignment")
+
 
 @dataclass(frozen=True)
 class MiningParams:
@@ -17,12 +19,15 @@ class MiningParams:
     freq_st_min: int = 20
     freq_min: int | None = None  # None: equal to freq_st_min, as in the paper
     max_faces: int = 3
+    linking: str = "graph"  # "graph": components of the occurrence graph (paper); "assignment": one path per object (ours)
 
     def __post_init__(self) -> None:
         if not (np.isfinite(self.eps) and self.eps > 0):
             raise MiningError(f"eps must be a positive number of pixels, not {self.eps}")
         if self.tau < 1 or self.freq_st_min < 1 or self.max_faces < 1:
             raise MiningError("tau, freq_st_min and max_faces must be at least 1")
+        if self.linking not in LINKINGS:
+            raise MiningError(f"linking must be one of {LINKINGS}, not {self.linking!r}")
         if self.freq_min is not None and self.freq_min < 1:
             raise MiningError(f"freq_min must be at least 1, not {self.freq_min}")
 

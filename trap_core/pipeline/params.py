@@ -10,7 +10,7 @@ from trap_core.mining import MiningParams
 from trap_core.segmentation import THRESHOLD_MODES
 
 SEGMENTATIONS = ("felzenszwalb", "colour")
-METHODS = ("paper",)
+METHODS = ("paper", "robust")
 
 
 class ParameterError(ValueError):
@@ -33,11 +33,14 @@ class TrapParams:
     # Mining (section 3)
     eps: float = 40.0
     tau: int = 25
-    freq_st_min: float = 0.1             # < 1: share of the frames; >= 1: frames (ours: 10 %)
+    freq_st_min: float = 0.05            # < 1: share of the frames; >= 1: frames (ours: 5 %)
     freq_min: float = 0.0                # 0: equal to freq_st_min (paper)
     max_faces: int = 3
     # Clustering and selection (sections 6-7)
-    method: str = "paper"
+    method: str = "robust"               # "paper": TRAP as published; "robust" (ours): see README
+    min_speed: float = 0.5               # px/frame relative to the camera: slower patterns are background (robust)
+    rejoin_similarity: float = 0.3       # Jaccard of plane patterns to rejoin fragments (robust)
+    core_share: float = 0.5              # track box: regions in this share of the occurrences (robust)
     linkage: str = "average"             # (ours)
     ignore_top: float = 0.1
     n_objects: int = 0                   # 0: found without supervision (ours)
@@ -61,6 +64,8 @@ class TrapParams:
             (0 <= self.ignore_top < 1 and 0 <= self.length_tolerance <= 1, "ignore_top and length_tolerance within [0, 1)"),
             (self.n_objects >= 0 and 0 <= self.min_track_length <= 1, "n_objects >= 0, min_track_length within [0, 1]"),
             (self.separation >= 0 and 1 <= self.threads <= 64, "separation >= 0 and threads within 1..64"),
+            (self.min_speed >= 0 and 0 <= self.rejoin_similarity <= 1 and 0 <= self.core_share <= 1,
+             "min_speed >= 0, rejoin_similarity and core_share within [0, 1]"),
         ]
         for ok, message in checks:
             if not ok:
@@ -74,7 +79,8 @@ class TrapParams:
         def frames(value: float) -> int:
             return max(1, round(value * n_frames)) if value < 1 else int(value)
         return MiningParams(eps=self.eps, tau=self.tau, freq_st_min=frames(self.freq_st_min),
-                            freq_min=frames(self.freq_min) if self.freq_min else None, max_faces=self.max_faces)
+                            freq_min=frames(self.freq_min) if self.freq_min else None, max_faces=self.max_faces,
+                            linking="assignment" if self.method == "robust" else "graph")
 
     @classmethod
     def from_mapping(cls, values: dict[str, Any]) -> TrapParams:

@@ -12,6 +12,7 @@ from trap_core.clustering import (ClusterSummary, Hierarchy, Track, Trajectories
 from trap_core.mining import MiningResult, mine
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph
+from trap_core.robust import camera_transforms, observed_paths, rejoin_fragments, world_speed
 
 
 @dataclass
@@ -24,25 +25,48 @@ class TrackingResult:
     summary: ClusterSummary
     selected: list[int]
     tracks: list[Track]
+    labels: np.ndarray  # cluster of each spatio-temporal pattern (-1: not clustered)
     seconds: dict[str, float] = field(default_factory=dict)
 
 
 def track(graphs: Sequence[PlaneGraph], params: TrapParams) -> TrackingResult:
-    """Run TRAP's stages 3-7 on the plane graphs of a whole video (frame i = graphs[i])."""
+    """Run TRAP's stages 3-7 on the plane graphs of a whole video (frame i = graphs[i]).
+
+    ``method="paper"``: every spatio-temporal pattern is clustered. ``"robust"`` (ours): one path
+    per object when linking occurrences, only patterns that move relative to the camera's
+    motion are clustered, and fragments of one object are rejoined across gaps.
+    """
     seconds: dict[str, float] = {}
+    n_frames = len(graphs)
+    robust = params.method == "robust"
     start = time.perf_counter()
-    mined = mine(graphs, params.mining(len(graphs)))
+    mined = mine(graphs, params.mining(n_frames))
     seconds["mining"] = time.perf_counter() - start
     start = time.perf_counter()
     paths = trajectories(mined)
-    distances = pattern_distances(paths)
+    clustered = np.arange(mined.n_st)
+    if robust:
+        observed = observed_paths(mined)
+        speed = world_speed(observed, camera_transforms(observed, n_frames), mined.n_st)
+        clustered = np.flatnonzero(speed >= params.min_speed)
+    seconds["camera"] = time.perf_counter() - start
+    start = time.perf_counter()
+    sub_paths = paths.subset(clustered)
+    distances = pattern_distances(sub_paths)
     seconds["distances"] = time.perf_counter() - start
     start = time.perf_counter()
-    hierarchy = cluster_patterns(distances, len(paths), params.linkage, params.ignore_top)
-    summary = summarise(hierarchy.labels, paths, np.diff(mined.st_offsets), len(graphs))
-    selected = select_clusters(summary, len(graphs), params.n_objects or None, params.length_tolerance,
+    hierarchy = cluster_patterns(distances, len(sub_paths), params.linkage, params.ignore_top)
+    labels = hierarchy.labels
+    if robust:
+        labels = rejoin_fragments(labels, sub_paths, mined.st_pattern[clustered], n_frames,
+                                  params.rejoin_similarity, params.tau)
+    occurrences = np.diff(mined.st_offsets)[clustered]
+    summary = summarise(labels, sub_paths, occurrences, n_frames)
+    selected = select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
                                params.min_track_length, params.separation)
-    tracks = [build_track(mined, hierarchy.labels, cluster, track_id)
+    all_labels = np.full(mined.n_st, -1, dtype=np.int64)
+    all_labels[clustered] = labels
+    tracks = [build_track(mined, all_labels, cluster, track_id, graphs, params.core_share if robust else 0.0)
               for track_id, cluster in enumerate(selected, start=1)]
     seconds["clustering"] = time.perf_counter() - start
-    return TrackingResult(mined, paths, hierarchy, summary, selected, tracks, seconds)
+    return TrackingResult(mined, paths, hierarchy, summary, selected, tracks, all_labels, seconds)

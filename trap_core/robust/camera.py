@@ -1,0 +1,80 @@
+"""Camera motion from the patterns themselves, and each pattern's motion relative to the scene.
+
+Beyond the paper (TRAP_SPEC section 10, "object versus background"): the background moves with
+the camera, so most patterns move together. Per pair of consecutive frames, a similarity
+transform (rotation, scale, translation) is fitted with RANSAC to the displacements of the
+patterns seen in both frames; chaining them maps every frame into the first frame's
+coordinates ("world"). In the world, background patterns stand still and objects move.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import cv2
+import numpy as np
+
+from trap_core.mining import MiningResult
+
+
+@dataclass(frozen=True)
+class ObservedPaths:
+    """Per spatio-temporal pattern and observed frame: the mean position of its occurrences."""
+
+    pattern: np.ndarray   # (K,) sorted by pattern then frame
+    frame: np.ndarray     # (K,)
+    position: np.ndarray  # (K, 2)
+
+
+def observed_paths(result: MiningResult) -> ObservedPaths:
+    """Mean position of each spatio-temporal pattern in each frame where it occurs."""
+    owner = np.repeat(np.arange(result.n_st), np.diff(result.st_offsets))
+    frames = result.occ_frame[result.st_rows]
+    key = owner.astype(np.int64) * (int(frames.max(initial=0)) + 1) + frames
+    keys, inverse = np.unique(key, return_inverse=True)
+    counts = np.bincount(inverse)
+    position = np.column_stack([np.bincount(inverse, weights=result.occ_position[result.st_rows, axis]) / counts
+                                for axis in (0, 1)])
+    stride = int(frames.max(initial=0)) + 1
+    return ObservedPaths(keys // stride, keys % stride, position)
+
+
+def camera_transforms(paths: ObservedPaths, n_frames: int, reprojection_px: float = 2.0) -> np.ndarray:
+    """(n_frames, 3, 3): ``M[t]`` maps world (frame 0) coordinates to frame t coordinates."""
+    step = (paths.pattern[1:] == paths.pattern[:-1]) & (paths.frame[1:] == paths.frame[:-1] + 1)
+    src_rows = np.flatnonzero(step)
+    when = paths.frame[src_rows]
+    order = np.argsort(when, kind="stable")
+    src_rows, when = src_rows[order], when[order]
+    bounds = np.searchsorted(when, np.arange(n_frames + 1))
+    transforms = np.tile(np.eye(3), (n_frames, 1, 1))
+    for t in range(n_frames - 1):
+        rows = src_rows[bounds[t]:bounds[t + 1]]
+        step_matrix = np.eye(3)
+        if rows.size >= 3:
+            fitted, _ = cv2.estimateAffinePartial2D(paths.position[rows].astype(np.float32),
+                                                    paths.position[rows + 1].astype(np.float32),
+                                                    method=cv2.RANSAC, ransacReprojThreshold=reprojection_px)
+            if fitted is not None:
+                step_matrix[:2] = fitted
+        elif rows.size:
+            step_matrix[:2, 2] = np.median(paths.position[rows + 1] - paths.position[rows], axis=0)
+        transforms[t + 1] = step_matrix @ transforms[t]
+    return transforms
+
+
+def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int) -> np.ndarray:
+    """(S,) median speed of each pattern in world coordinates, pixels per frame (0 if seen once)."""
+    inverse = np.linalg.inv(transforms)[paths.frame]
+    homogeneous = np.column_stack([paths.position, np.ones(len(paths.frame))])
+    world = np.einsum("kij,kj->ki", inverse, homogeneous)[:, :2]
+    same = paths.pattern[1:] == paths.pattern[:-1]
+    rate = np.linalg.norm(np.diff(world, axis=0), axis=1) / np.maximum(np.diff(paths.frame), 1)
+    owner, rate = paths.pattern[1:][same], rate[same]
+    speed = np.zeros(n_patterns)
+    if owner.size:
+        order = np.lexsort((rate, owner))
+        owner, rate = owner[order], rate[order]
+        bounds = np.searchsorted(owner, np.arange(n_patterns + 1))
+        for s in np.flatnonzero(np.diff(bounds)):
+            speed[s] = np.median(rate[bounds[s]:bounds[s + 1]])
+    return speed

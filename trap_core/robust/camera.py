@@ -2,7 +2,8 @@
 
 Beyond the paper (TRAP_SPEC section 10, "object versus background"): the background moves with
 the camera, so most patterns move together. Per pair of consecutive frames, a similarity
-transform (rotation, scale, translation) is fitted with RANSAC to the displacements of the
+transform (rotation, scale, translation) is fitted by least median of squares (robust to
+up to half of the patterns moving on their own) to the displacements of the
 patterns seen in both frames; chaining them maps every frame into the first frame's
 coordinates ("world"). In the world, background patterns stand still and objects move.
 """
@@ -38,7 +39,7 @@ def observed_paths(result: MiningResult) -> ObservedPaths:
     return ObservedPaths(keys // stride, keys % stride, position)
 
 
-def camera_transforms(paths: ObservedPaths, n_frames: int, reprojection_px: float = 2.0) -> np.ndarray:
+def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:
     """(n_frames, 3, 3): ``M[t]`` maps world (frame 0) coordinates to frame t coordinates."""
     step = (paths.pattern[1:] == paths.pattern[:-1]) & (paths.frame[1:] == paths.frame[:-1] + 1)
     src_rows = np.flatnonzero(step)
@@ -53,7 +54,7 @@ def camera_transforms(paths: ObservedPaths, n_frames: int, reprojection_px: floa
         if rows.size >= 3:
             fitted, _ = cv2.estimateAffinePartial2D(paths.position[rows].astype(np.float32),
                                                     paths.position[rows + 1].astype(np.float32),
-                                                    method=cv2.RANSAC, ransacReprojThreshold=reprojection_px)
+                                                    method=cv2.LMEDS)
             if fitted is not None:
                 step_matrix[:2] = fitted
         elif rows.size:

@@ -1,0 +1,117 @@
+"""Trajectories, the pattern distance, the lifetime cut, selection and tracks."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.cluster.hierarchy import linkage
+
+from trap_core.clustering import (ClusteringError, Trajectories, build_track, cluster_patterns, labels_after_merges,
+                                  lifetime_cut, pattern_distances, select_clusters, summarise, trajectories)
+from trap_core.mining import MiningResult
+
+
+def _paths(segments: list[tuple[int, np.ndarray]]) -> Trajectories:
+    starts = np.array([s for s, _ in segments])
+    points = [np.asarray(p, dtype=float) for _, p in segments]
+    ends = starts + np.array([len(p) for p in points]) - 1
+    return Trajectories(starts, ends, np.r_[0, np.cumsum([len(p) for p in points])], np.concatenate(points))
+
+
+def _naive_distance(a: tuple[int, np.ndarray], b: tuple[int, np.ndarray]) -> float:
+    (sa, pa), (sb, pb) = a, b
+    ea, eb = sa + len(pa) - 1, sb + len(pb) - 1
+    fs, fe = max(sa, sb), min(ea, eb)
+    if fe - fs <= 0:
+        return np.inf
+    d_traj = np.mean([np.linalg.norm(pa[t - sa] - pb[t - sb]) for t in range(fs, fe + 1)])
+    d_ov = (fe - fs + 1) / (max(ea, eb) - min(sa, sb) + 1)
+    return d_traj * (2 - d_ov)
+
+
+def test_distance_matches_the_formula_and_the_papers_example() -> None:
+    rng = np.random.default_rng(0)
+    segments = [(int(rng.integers(0, 30)), rng.uniform(0, 100, size=(int(rng.integers(1, 25)), 2))) for _ in range(40)]
+    condensed = pattern_distances(_paths(segments))
+    expected = [_naive_distance(segments[i], segments[j]) for i in range(40) for j in range(i + 1, 40)]
+    np.testing.assert_allclose(condensed, expected)
+    # Fig. 2: A on frames 1..6, B on 4..8, distances a, b, c on the shared frames 4..6.
+    a = (1, np.array([[0, 0]] * 6, dtype=float))
+    b = (4, np.array([[3, 0], [4, 0], [5, 0], [9, 9], [9, 9]], dtype=float))
+    assert pattern_distances(_paths([a, b]))[0] == pytest.approx((3 + 4 + 5) / 3 * (2 - 3 / 8))
+
+
+def test_trajectories_average_and_interpolate() -> None:
+    frames = np.array([2, 2, 5])
+    positions = np.array([[0.0, 0.0], [2.0, 2.0], [4.0, 7.0]])
+    result = MiningResult(np.array([1]), np.array([2]), np.array([1]), frames, np.zeros(3, np.int64), positions,
+                          np.zeros((3, 4)), np.zeros((3, 4)), np.zeros((3, 1), np.int64), np.array([0]),
+                          np.array([0, 3]), np.arange(3))
+    paths = trajectories(result)
+    assert paths.start.tolist() == [2] and paths.end.tolist() == [5]
+    np.testing.assert_allclose(paths.of(0), [[1, 1], [2, 3], [3, 5], [4, 7]])
+
+
+def test_lifetime_cut_picks_the_most_stable_level() -> None:
+    # Three tight groups of 5 points, far apart: the 3-cluster level lives longest.
+    rng = np.random.default_rng(1)
+    points = np.concatenate([rng.normal(centre, 0.1, size=(5, 2)) for centre in ((0, 0), (10, 0), (0, 30))])
+    matrix = linkage(points, "average")
+    assert lifetime_cut(matrix, 15, ignore_top=0.1) == 3
+    labels = labels_after_merges(matrix, 15, 12)
+    assert sorted(np.bincount(labels).tolist()) == [5, 5, 5]
+    assert labels[0] == 0  # clusters numbered by their first member
+
+
+def test_lifetime_cut_ignores_outliers_merging_at_the_top() -> None:
+    rng = np.random.default_rng(2)
+    points = np.concatenate([rng.normal(0, 0.1, size=(10, 2)), rng.normal(5, 0.1, size=(10, 2)), [[1000.0, 1000.0]]])
+    matrix = linkage(points, "average")
+    # Without the rule, the outlier level (2 clusters) wins; ignoring levels 1..0.1n (1, 2), the groups do.
+    assert lifetime_cut(matrix, 21, ignore_top=0.0) == 2
+    level = lifetime_cut(matrix, 21, ignore_top=0.1)
+    # The longest-lived cluster is the group completed first; the cut is where it was created,
+    # so the other group may still be in two pieces, but groups never mix.
+    assert level in (3, 4)
+    labels = labels_after_merges(matrix, 21, 21 - level)
+    assert not set(labels[:10]) & set(labels[10:20]) and labels[20] not in set(labels[:20])
+
+
+def test_infinite_distances_get_a_finite_stand_in() -> None:
+    condensed = np.array([1.0, np.inf, np.inf])  # 0-1 close, 2 shares no frames with them
+    hierarchy = cluster_patterns(condensed, 3)
+    assert np.isfinite(hierarchy.linkage[:, 2]).all() and hierarchy.linkage[-1, 2] == 3.0
+    with pytest.raises(ClusteringError, match="linkage"):
+        cluster_patterns(condensed, 3, method="ward")
+
+
+def test_selection_longest_then_most_patterns_then_occurrences() -> None:
+    # Cluster 0: frames 0-99 (1 pattern); cluster 1: 0-95 (3 patterns); cluster 2: 0-49.
+    paths = _paths([(0, np.zeros((100, 2))), (0, np.full((96, 2), 200.0)), (0, np.full((96, 2), 200.0)),
+                    (0, np.full((96, 2), 200.0)), (0, np.full((50, 2), 400.0))])
+    labels = np.array([0, 1, 1, 1, 2])
+    summary = summarise(labels, paths, np.array([10, 5, 5, 5, 50]), 100)
+    assert summary.length.tolist() == [100, 96, 50]
+    # Within 10 % of the longest, the one with most patterns wins.
+    assert select_clusters(summary, 100, n_objects=1) == [1]
+    assert select_clusters(summary, 100, n_objects=2) == [1, 0]
+    assert select_clusters(summary, 100, n_objects=1, tolerance=0.0) == [0]
+    # Unsupervised: all three are long enough (>= 25 %) and far apart.
+    assert select_clusters(summary, 100) == [1, 0, 2]
+    assert select_clusters(summary, 100, min_length=0.6) == [1, 0]
+    # A cluster whose path runs within `separation` of a kept one is the same object.
+    near = _paths([(0, np.zeros((100, 2))), (0, np.full((90, 2), 10.0))])
+    summary = summarise(np.array([0, 1]), near, np.array([1, 1]), 100)
+    assert select_clusters(summary, 100, separation=40.0) == [0]
+    assert select_clusters(summary, 100, separation=5.0) == [0, 1]
+
+
+def test_track_boxes_and_scores() -> None:
+    frames = np.array([0, 0, 1])
+    boxes = np.array([[10, 10, 19, 19], [15, 5, 30, 12], [0, 0, 4, 4]], dtype=float)
+    result = MiningResult(np.array([1, 2]), np.array([2, 1]), np.array([1, 1]), frames, np.array([0, 1, 0]),
+                          np.zeros((3, 2)), boxes, boxes, np.zeros((3, 1), np.int64), np.array([0, 1]),
+                          np.array([0, 2, 3]), np.array([0, 2, 1]))
+    track = build_track(result, np.array([0, 0]), 0, track_id=7)
+    assert track.track_id == 7 and track.frames.tolist() == [0, 1]
+    np.testing.assert_array_equal(track.boxes, [[10, 5, 21, 15], [0, 0, 5, 5]])
+    np.testing.assert_array_equal(track.score, [1.0, 0.5])

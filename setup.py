@@ -24,6 +24,9 @@ setup(
     entry_points={
         "console_scripts": [
             "process_bag = trap_ros.process_bag:main",
+            "bag_reader_node = trap_ros.bag_reader_node:main",
+            "segmentation_node = trap_ros.segmentation_node:main",
+            "mining_node = trap_ros.mining_node:main",
             "make_synthetic = trap_core.synthetic.cli:main",
         ],
     },

@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from trap_core.clustering import LINKAGES
@@ -11,43 +11,45 @@ from trap_core.segmentation import THRESHOLD_MODES
 
 SEGMENTATIONS = ("felzenszwalb", "colour")
 METHODS = ("paper", "robust")
+# Which node needs which parameters (the segmentation node: stages 1-2; the mining node: 3-7).
+GRAPH_STAGE = ("segmentation", "k", "sigma", "min_size", "threshold", "connectivity", "colour_bins", "threads")
 
 
 class ParameterError(ValueError):
     """A parameter is unknown or out of range; the message is one line for the user."""
 
 
+def _p(default: Any, doc: str) -> Any:
+    return field(default=default, metadata={"doc": doc})
+
+
 @dataclass(frozen=True)
 class TrapParams:
     """Defaults are the paper's (TRAP_SPEC), marked (ours) where the paper is silent."""
 
-    # Segmentation (section 1)
-    segmentation: str = "felzenszwalb"   # or "colour": exact-colour regions (synthetic videos)
-    k: float = 10.0                      # threshold constant (constant mode: colour units)
-    sigma: float = 0.8
-    min_size: int = 20
-    threshold: str = "constant"          # "constant" (paper) or "size" (original)
-    connectivity: int = 4
-    # Graph (section 2)
-    colour_bins: int = 4                 # levels per channel of node labels (ours)
-    # Mining (section 3)
-    eps: float = 40.0
-    tau: int = 25
-    freq_st_min: float = 0.05            # < 1: share of the frames; >= 1: frames (ours: 5 %)
-    freq_min: float = 0.0                # 0: equal to freq_st_min (paper)
-    max_faces: int = 3
-    # Clustering and selection (sections 6-7)
-    method: str = "robust"               # "paper": TRAP as published; "robust" (ours): see README
-    min_speed: float = 0.5               # px/frame relative to the camera: slower patterns are background (robust)
-    rejoin_similarity: float = 0.3       # Jaccard of plane patterns to rejoin fragments (robust)
-    core_share: float = 0.5              # track box: regions in this share of the occurrences (robust)
-    linkage: str = "average"             # (ours)
-    ignore_top: float = 0.1
-    n_objects: int = 0                   # 0: found without supervision (ours)
-    length_tolerance: float = 0.1
-    min_track_length: float = 0.25       # share of the video a track must cover (ours)
-    separation: float = 40.0             # px between kept tracks' paths (ours)
-    threads: int = 2
+    segmentation: str = _p("felzenszwalb", "felzenszwalb, or colour: exact-colour regions (synthetic videos)")
+    k: float = _p(10.0, "segmentation threshold constant (constant mode: colour-distance units)")
+    sigma: float = _p(0.8, "Gaussian smoothing before segmentation")
+    min_size: int = _p(20, "regions smaller than this (pixels) are merged")
+    threshold: str = _p("constant", "constant (paper: tau = k) or size (original: tau = k/|C|)")
+    connectivity: int = _p(4, "pixel connectivity of the segmentation: 4 or 8")
+    colour_bins: int = _p(4, "levels per colour channel of the node labels (ours)")
+    eps: float = _p(40.0, "px: occurrences closer than this in frames at most tau apart are linked")
+    tau: int = _p(25, "frames: temporal threshold of occurrence linking")
+    freq_st_min: float = _p(0.05, "minimum frames of a spatio-temporal pattern: < 1 share of the video, >= 1 frames")
+    freq_min: float = _p(0.0, "minimum frames holding a pattern: 0 = freq_st_min (paper), < 1 share, >= 1 frames")
+    max_faces: int = _p(3, "largest pattern, in faces")
+    method: str = _p("robust", "paper (TRAP as published) or robust (ours: README 'Method')")
+    min_speed: float = _p(0.5, "px/frame relative to the camera: slower patterns are background (robust)")
+    rejoin_similarity: float = _p(0.3, "Jaccard similarity of structures needed to rejoin fragments (robust)")
+    core_share: float = _p(0.5, "track box: regions in at least this share of the frame's occurrences (robust)")
+    linkage: str = _p("average", "hierarchical clustering linkage: average, single, complete, weighted (ours)")
+    ignore_top: float = _p(0.1, "share of the top levels of the hierarchy the lifetime cut ignores")
+    n_objects: int = _p(0, "objects to track; 0 = found without supervision (ours)")
+    length_tolerance: float = _p(0.1, "share of the video: clusters this close to the longest compete")
+    min_track_length: float = _p(0.25, "share of the video a track must cover when n_objects = 0 (ours)")
+    separation: float = _p(40.0, "px: paths of kept tracks must be at least this far apart (ours)")
+    threads: int = _p(2, "segmentation threads")
 
     def __post_init__(self) -> None:
         checks = [
@@ -61,7 +63,8 @@ class TrapParams:
             (self.eps > 0 and self.tau >= 1, "eps must be > 0 and tau >= 1"),
             (self.freq_st_min > 0 and self.freq_min >= 0, "freq_st_min must be > 0 and freq_min >= 0"),
             (1 <= self.max_faces <= 8, "max_faces must be within 1..8"),
-            (0 <= self.ignore_top < 1 and 0 <= self.length_tolerance <= 1, "ignore_top and length_tolerance within [0, 1)"),
+            (0 <= self.ignore_top < 1 and 0 <= self.length_tolerance <= 1,
+             "ignore_top must be within [0, 1) and length_tolerance within [0, 1]"),
             (self.n_objects >= 0 and 0 <= self.min_track_length <= 1, "n_objects >= 0, min_track_length within [0, 1]"),
             (self.separation >= 0 and 1 <= self.threads <= 64, "separation >= 0 and threads within 1..64"),
             (self.min_speed >= 0 and 0 <= self.rejoin_similarity <= 1 and 0 <= self.core_share <= 1,
@@ -69,7 +72,7 @@ class TrapParams:
         ]
         for ok, message in checks:
             if not ok:
-                raise ParameterError(f"{message} (got {self.as_dict()})")
+                raise ParameterError(message)
 
     def as_dict(self) -> dict[str, Any]:
         return dataclasses.asdict(self)
@@ -83,17 +86,24 @@ class TrapParams:
                             linking="assignment" if self.method == "robust" else "graph")
 
     @classmethod
+    def descriptions(cls) -> dict[str, str]:
+        """One-line meaning of each parameter (ROS parameter descriptors, README table)."""
+        return {f.name: f.metadata["doc"] for f in dataclasses.fields(cls)}
+
+    @classmethod
     def from_mapping(cls, values: dict[str, Any]) -> TrapParams:
         """Build from a flat mapping (ROS parameters); unknown names are an error."""
         fields = {f.name: f for f in dataclasses.fields(cls)}
         unknown = sorted(set(values) - set(fields))
         if unknown:
-            raise ParameterError(f"unknown parameter(s): {', '.join(unknown)} (known: {', '.join(fields)})")
+            raise ParameterError(f"unknown parameter(s): {', '.join(unknown)}")
         typed = {}
         for name, value in values.items():
             kind = type(fields[name].default)
+            if kind is int and isinstance(value, float) and not value.is_integer():
+                raise ParameterError(f"parameter {name} must be an integer, not {value!r}")
             try:
-                typed[name] = kind(value) if kind is not bool else bool(value)
+                typed[name] = kind(value)
             except (TypeError, ValueError):
                 raise ParameterError(f"parameter {name} must be a {kind.__name__}, not {value!r}") from None
         return cls(**typed)

@@ -16,37 +16,39 @@ import numpy as np
 from trap_core.clustering import Trajectories, summarise
 
 
-def _signature(labels: np.ndarray, st_pattern: np.ndarray, cluster: int) -> set[int]:
-    return set(st_pattern[labels == cluster].tolist())
-
-
 def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.ndarray, n_frames: int,
                      min_similarity: float = 0.3, max_overlap: int = 25) -> np.ndarray:
-    """Cluster labels (0..C'-1) after joining fragments of the same object."""
+    """Cluster labels (0..C'-1) after joining fragments of the same object.
+
+    Candidate pairs and their costs are computed once on the fragments; they are then taken
+    cheapest first, and a pair is joined only if the two groups it would unite (including
+    earlier joins) still share at most ``max_overlap`` frames.
+    """
     labels = np.unique(labels, return_inverse=True)[1]
-    occurrences = np.ones(labels.size)
-    while True:
-        summary = summarise(labels, paths, occurrences, n_frames)
-        n_clusters = summary.length.size
-        signatures = [_signature(labels, st_pattern, c) for c in range(n_clusters)]
-        best: tuple[float, int, int] | None = None
-        for a in range(n_clusters):
-            for b in range(n_clusters):
-                if a == b or summary.paths.start[a] >= summary.paths.start[b]:
-                    continue
-                overlap = int((summary.covered[a] & summary.covered[b]).sum())
-                if overlap > max_overlap:
-                    continue
-                union = signatures[a] | signatures[b]
-                if not union or len(signatures[a] & signatures[b]) / len(union) < min_similarity:
-                    continue
-                cost = _prediction_error(summary.paths, a, b)
-                if best is None or cost < best[0]:
-                    best = (cost, a, b)
-        if best is None:
-            return labels
-        _, a, b = best
-        labels = np.unique(np.where(labels == b, a, labels), return_inverse=True)[1]
+    summary = summarise(labels, paths, np.ones(labels.size), n_frames)
+    n_clusters = summary.length.size
+    if n_clusters < 2:
+        return labels
+    signature = np.zeros((n_clusters, int(st_pattern.max()) + 1), dtype=bool)
+    signature[labels, st_pattern] = True
+    shared = signature.astype(np.float32) @ signature.T.astype(np.float32)
+    sizes = signature.sum(axis=1)
+    similarity = shared / np.maximum(sizes[:, None] + sizes[None, :] - shared, 1)
+    covered = summary.covered.astype(np.float32)
+    overlap = covered @ covered.T
+    start = summary.paths.start
+    earlier, later = np.nonzero((start[:, None] < start[None, :]) & (overlap <= max_overlap)
+                                & (similarity >= min_similarity))
+    costs = np.array([_prediction_error(summary.paths, a, b) for a, b in zip(earlier, later)])
+    group = np.arange(n_clusters)
+    group_covered = summary.covered.copy()
+    for pair in np.argsort(costs, kind="stable"):
+        a, b = group[earlier[pair]], group[later[pair]]
+        if a == b or int((group_covered[a] & group_covered[b]).sum()) > max_overlap:
+            continue
+        group[group == b] = a
+        group_covered[a] |= group_covered[b]
+    return np.unique(group[labels], return_inverse=True)[1]
 
 
 def _prediction_error(paths: Trajectories, earlier: int, later: int) -> float:

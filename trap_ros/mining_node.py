@@ -1,0 +1,122 @@
+"""Mining node: accumulates plane graphs; at the end of the bag mines, clusters, selects and
+publishes ``detections`` (one ``vision_msgs/Detection2DArray`` per frame, header = that frame's
+image header), ``tracks`` (one Detection2DArray per track, latched) and ``trajectories``
+(``visualization_msgs/MarkerArray``). Acknowledges every graph on ``progress`` (the bag
+reader's flow control).
+"""
+from __future__ import annotations
+
+import sys
+import threading
+from collections.abc import Callable
+
+import rclpy
+from rclpy.node import Node
+from sensor_msgs.msg import CompressedImage
+from std_msgs.msg import Header, UInt64
+from vision_msgs.msg import Detection2DArray
+from visualization_msgs.msg import MarkerArray
+
+from trap_core.pipeline import GRAPH_STAGE, ParameterError, TrackingResult, TrapParams, track
+from trap_core.rag import PlaneGraph
+from trap_ros.messages import frame_detections, message_graph, track_arrays, trajectory_markers
+from trap_ros.parameters import declare_trap_parameters, trap_parameters
+from trap_ros.qos import LATCHED, PIPELINE
+
+MINING_STAGE = tuple(name for name in TrapParams().as_dict() if name not in GRAPH_STAGE)
+
+
+class MiningNode(Node):
+    """See the module docstring. ``on_done(result, published)`` is called after publishing."""
+
+    def __init__(self, on_done: Callable[[TrackingResult | None, dict], None] | None = None, **kwargs) -> None:
+        super().__init__("mining", **kwargs)
+        declare_trap_parameters(self, MINING_STAGE)
+        self.params = trap_parameters(self, MINING_STAGE)
+        self.graphs: list[PlaneGraph] = []
+        self.headers: list[Header] = []
+        self.expected: int | None = None
+        self.on_done = on_done
+        self.done = threading.Event()
+        self.result: TrackingResult | None = None
+        self.error: str | None = None
+        self.published: dict[str, list] = {}
+        self._started = False
+        self._lock = threading.Lock()
+        self.progress_pub = self.create_publisher(UInt64, "progress", PIPELINE)
+        self.detections_pub = self.create_publisher(Detection2DArray, "detections", PIPELINE)
+        self.tracks_pub = self.create_publisher(Detection2DArray, "tracks", LATCHED)
+        self.trajectories_pub = self.create_publisher(MarkerArray, "trajectories", LATCHED)
+        self.create_subscription(CompressedImage, "graph", self._on_graph, PIPELINE)
+        self.create_subscription(UInt64, "end_of_bag", self._on_end, LATCHED)
+
+    def _on_graph(self, message: CompressedImage) -> None:
+        graph = message_graph(message)
+        with self._lock:
+            self.graphs.append(graph)
+            self.headers.append(message.header)
+            count = len(self.graphs)
+        self.progress_pub.publish(UInt64(data=count))
+        self._maybe_finish()
+
+    def _on_end(self, message: UInt64) -> None:
+        self.expected = int(message.data)
+        self.get_logger().info(f"end of bag announced: {self.expected} frames")
+        self._maybe_finish()
+
+    def _maybe_finish(self) -> None:
+        with self._lock:
+            ready = self.expected is not None and len(self.graphs) >= self.expected and not self._started
+            self._started = self._started or ready
+        if ready:
+            threading.Thread(target=self.finish, name="trap-tracking", daemon=True).start()
+
+    def finish(self) -> None:
+        """Track over the graphs received so far and publish (also used after an interrupt)."""
+        with self._lock:
+            graphs, headers = list(self.graphs), list(self.headers)
+            self._started = True
+        published: dict[str, list] = {"detections": [], "tracks": [], "trajectories": []}
+        try:
+            if len(graphs) >= 2:
+                self.get_logger().info(f"tracking over {len(graphs)} frames")
+                self.result = track(graphs, self.params)
+                published["detections"] = frame_detections(headers, self.result.tracks)
+                published["tracks"] = track_arrays(headers, self.result.tracks)
+                published["trajectories"] = [trajectory_markers(headers[0], self.result.tracks)]
+                for message in published["detections"]:
+                    self.detections_pub.publish(message)
+                for message in published["tracks"]:
+                    self.tracks_pub.publish(message)
+                self.trajectories_pub.publish(published["trajectories"][0])
+                self.get_logger().info(f"{len(self.result.tracks)} tracks published")
+            else:
+                self.get_logger().warning(f"{len(graphs)} frame(s): too few to track")
+        except Exception as error:  # reported, never swallowed: the run ends with an error
+            self.error = f"tracking failed: {error}"
+            self.get_logger().error(self.error)
+        self.published = published
+        if self.on_done:
+            self.on_done(self.result, published)
+        self.done.set()
+
+
+def main(args: list[str] | None = None) -> None:
+    rclpy.init(args=args)
+    code = 0
+    try:
+        node = MiningNode()
+        while rclpy.ok() and not node.done.is_set():
+            rclpy.spin_once(node, timeout_sec=0.1)
+        for _ in range(20):  # let late subscribers fetch the latched results
+            rclpy.spin_once(node, timeout_sec=0.05)
+        code = 1 if node.error else 0
+    except ParameterError as error:
+        print(f"mining: error: {error}", file=sys.stderr)
+        code = 1
+    except KeyboardInterrupt:
+        code = 130
+    finally:
+        if rclpy.ok():
+            rclpy.shutdown()
+    sys.exit(code)

@@ -1,0 +1,93 @@
+"""Segmentation/RAG node: ``image`` in, each frame's plane graph out on ``graph``.
+
+Frames are segmented on ``threads`` threads at once (the compiled kernels release the GIL)
+and the graphs are published strictly in the order the images came, with the image's header.
+Also publishes ``graph_markers`` (regions and contacts) for RViz / Foxglove.
+"""
+from __future__ import annotations
+
+import sys
+import threading
+from collections import deque
+from concurrent.futures import Future, ThreadPoolExecutor
+
+import rclpy
+from rclpy.node import Node
+from sensor_msgs.msg import CompressedImage, Image
+from visualization_msgs.msg import MarkerArray
+
+from trap_core.pipeline import GRAPH_STAGE, ParameterError, frame_graph
+from trap_ros.messages import graph_markers, graph_message, image_rgb
+from trap_ros.parameters import declare_trap_parameters, trap_parameters
+from trap_ros.qos import PIPELINE
+
+
+class SegmentationNode(Node):
+    """See the module docstring."""
+
+    def __init__(self, **kwargs) -> None:
+        super().__init__("segmentation", **kwargs)
+        declare_trap_parameters(self, GRAPH_STAGE)
+        self.declare_parameter("publish_markers", True)
+        self.params = trap_parameters(self, GRAPH_STAGE)
+        self.markers = bool(self.get_parameter("publish_markers").value)
+        self.graph_pub = self.create_publisher(CompressedImage, "graph", PIPELINE)
+        self.marker_pub = self.create_publisher(MarkerArray, "graph_markers", PIPELINE)
+        self.pool = ThreadPoolExecutor(self.params.threads, thread_name_prefix="trap-seg")
+        self.pending: deque[tuple[Future, object]] = deque()
+        self.lock = threading.Lock()
+        self.published = 0
+        self.errors = 0
+        self.create_subscription(Image, "image", self._on_image, PIPELINE)
+        self.create_timer(0.02, self.publish_done)
+
+    def _on_image(self, message: Image) -> None:
+        try:
+            rgb = image_rgb(message)
+        except ValueError as error:
+            self.errors += 1
+            self.get_logger().error(f"frame skipped: {error}")
+            return
+        with self.lock:
+            self.pending.append((self.pool.submit(frame_graph, rgb, self.params), message.header))
+            self._publish_ready(block=len(self.pending) > 2 * self.params.threads)
+
+    def _publish_ready(self, block: bool) -> None:
+        """Publish finished graphs from the front of the queue (in order)."""
+        while self.pending and (block or self.pending[0][0].done()):
+            future, header = self.pending.popleft()
+            graph = future.result()
+            self.graph_pub.publish(graph_message(graph, header))
+            if self.markers:
+                self.marker_pub.publish(graph_markers(header, graph))
+            self.published += 1
+            block = len(self.pending) > 2 * self.params.threads
+
+    def publish_done(self) -> None:
+        """Publish the graphs finished so far, in order (a timer calls this)."""
+        with self.lock:
+            self._publish_ready(block=False)
+
+    def destroy_node(self) -> None:
+        with self.lock:
+            self._publish_ready(block=True)
+        self.pool.shutdown(wait=True)
+        super().destroy_node()
+
+
+def main(args: list[str] | None = None) -> None:
+    sys.setswitchinterval(0.0005)  # the executor and the segmentation threads trade the GIL per frame
+    rclpy.init(args=args)
+    code = 0
+    try:
+        node = SegmentationNode()
+        rclpy.spin(node)
+    except ParameterError as error:
+        print(f"segmentation: error: {error}", file=sys.stderr)
+        code = 1
+    except KeyboardInterrupt:
+        code = 130
+    finally:
+        if rclpy.ok():
+            rclpy.shutdown()
+    sys.exit(code)

@@ -21,6 +21,7 @@ import rclpy
 import yaml
 from rclpy.executors import MultiThreadedExecutor
 from rclpy.parameter import Parameter
+from rclpy.signals import SignalHandlerOptions
 
 from trap_core.cli import UsageError, run_main
 from trap_core.outputs import sheet_frames
@@ -102,7 +103,8 @@ def _main() -> int:
     if (args.out / "tracks.mcap").exists():
         shutil.rmtree(args.out / "tracks.mcap")
     args.out.mkdir(parents=True, exist_ok=True)
-    rclpy.init(args=["process_bag", "--ros-args", *ros_args])
+    # SIGINT is ours: the nodes must stay usable to finish on the frames read so far.
+    rclpy.init(args=["process_bag", "--ros-args", *ros_args], signal_handler_options=SignalHandlerOptions.NO)
     nodes = []
     try:
         reader = BagReaderNode(parameter_overrides=[Parameter("bag", value=str(args.bag)),
@@ -132,9 +134,15 @@ def _main() -> int:
                 if len(mining.graphs) > meter.done:
                     meter.advance(len(mining.graphs) - meter.done)
         except KeyboardInterrupt:
+            # Stop reading; the reader announces what it published, the frames in flight are
+            # segmented and mined, and the mining node tracks over all of them as at a normal end.
             interrupted = True
             reader.stop()
-            mining.finish()
+            try:
+                if not mining.done.wait(timeout=60):
+                    mining.finish()
+            except KeyboardInterrupt:
+                mining.finish()
         meter.advance(len(mining.graphs) - meter.done)
         meter.finish()
         executor.shutdown(timeout_sec=5)

@@ -11,5 +11,5 @@ if [ ! -e "$example/anim2" ]; then
   mkdir -p "$example"
   "$bin/make_synthetic" "$example/anim2" --preset anim2
 fi
-"$bin/process_bag" "$example/anim2" --out "$top/results/anim2"
+"$bin/process_bag" "$example/anim2" --out "$top/results/anim2" --ros-args --params-file "$top/config/synthetic.yaml"
 echo "results: $top/results/anim2"

@@ -13,6 +13,7 @@ import time
 
 import rclpy
 from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.duration import Duration
 from rclpy.node import Node
 from sensor_msgs.msg import Image
 from std_msgs.msg import Header, UInt64
@@ -27,6 +28,7 @@ class BagReaderNode(Node):
     """Publishes the frames of ``bag`` on ``image``; see the module docstring."""
 
     def __init__(self, **kwargs) -> None:
+        kwargs.setdefault("namespace", "trap")
         super().__init__("bag_reader", **kwargs)
         declare = lambda name, value, text: self.declare_parameter(  # noqa: E731
             name, value, ParameterDescriptor(description=text))
@@ -37,7 +39,7 @@ class BagReaderNode(Node):
         declare("stall_timeout", 60.0, "seconds without acknowledgement before giving up (window > 0)")
         self.image_pub = self.create_publisher(Image, "image", PIPELINE)
         self.end_pub = self.create_publisher(UInt64, "end_of_bag", LATCHED)
-        self.create_subscription(UInt64, "progress", self._on_progress, PIPELINE)
+        self._progress_topic = self.create_subscription(UInt64, "progress", self._on_progress, PIPELINE).topic_name
         self._acknowledged = 0
         self._changed = threading.Condition()
         self._stop = threading.Event()
@@ -81,10 +83,32 @@ class BagReaderNode(Node):
                     deadline = time.monotonic() + stall_timeout
         return not self._stop.is_set()
 
+    def _wait_for_consumers(self, need_acknowledgement: bool, timeout: float) -> bool:
+        """Frames published before a subscriber is matched would be lost: wait for one (and for
+        the node that acknowledges, under flow control)."""
+        deadline = time.monotonic() + timeout
+        while not self._stop.is_set():
+            ready = self.image_pub.get_subscription_count() > 0
+            if need_acknowledgement:
+                ready = ready and self.count_publishers(self._progress_topic) > 0
+            if ready:
+                return True
+            if time.monotonic() >= deadline:
+                self.error = (f"no subscriber to {self.image_pub.topic_name} after {timeout:.0f} s "
+                              "(start the segmentation and mining nodes, or set window:=0)")
+                return False
+            time.sleep(0.05)
+        return False
+
     def _publish_all(self) -> None:
         window = int(self.get_parameter("window").value)
         rate = float(self.get_parameter("rate").value)
         stall_timeout = float(self.get_parameter("stall_timeout").value)
+        if not self._wait_for_consumers(window > 0, stall_timeout):
+            self.get_logger().error(self.error)
+            self.end_pub.publish(UInt64(data=0))
+            self.finished.set()
+            return
         meter = Progress(self.stream.count, "bag_reader")
         start = time.monotonic()
         try:
@@ -109,6 +133,9 @@ class BagReaderNode(Node):
         if self.error:
             self.get_logger().error(self.error)
         self.end_pub.publish(UInt64(data=self.published))
+        # Reliable delivery needs the writer alive until the subscribers have acknowledged.
+        if not self.image_pub.wait_for_all_acked(Duration(seconds=stall_timeout)):
+            self.get_logger().warning("not every image was acknowledged before the end of the bag")
         self.get_logger().info(f"end of bag: {self.published} frames published")
         self.finished.set()
 

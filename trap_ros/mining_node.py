@@ -30,6 +30,7 @@ class MiningNode(Node):
     """See the module docstring. ``on_done(result, published)`` is called after publishing."""
 
     def __init__(self, on_done: Callable[[TrackingResult | None, dict], None] | None = None, **kwargs) -> None:
+        kwargs.setdefault("namespace", "trap")
         super().__init__("mining", **kwargs)
         declare_trap_parameters(self, MINING_STAGE)
         self.params = trap_parameters(self, MINING_STAGE)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import sys
 import threading
+import time
 from collections import deque
 from concurrent.futures import Future, ThreadPoolExecutor
 
@@ -26,6 +27,7 @@ class SegmentationNode(Node):
     """See the module docstring."""
 
     def __init__(self, **kwargs) -> None:
+        kwargs.setdefault("namespace", "trap")
         super().__init__("segmentation", **kwargs)
         declare_trap_parameters(self, GRAPH_STAGE)
         self.declare_parameter("publish_markers", True)
@@ -52,9 +54,23 @@ class SegmentationNode(Node):
             self.pending.append((self.pool.submit(frame_graph, rgb, self.params), message.header))
             self._publish_ready(block=len(self.pending) > 2 * self.params.threads)
 
+    def _downstream_ready(self, block: bool) -> bool:
+        """Graphs published before a subscriber is matched would be lost: before the first one,
+        wait for a subscriber (up to 60 s when the queue is full, then publish anyway)."""
+        if self.published or self.graph_pub.get_subscription_count() > 0:
+            return True
+        if not block:
+            return False
+        deadline = time.monotonic() + 60.0
+        while self.graph_pub.get_subscription_count() == 0 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        if self.graph_pub.get_subscription_count() == 0:
+            self.get_logger().warning("no subscriber to the graphs after 60 s; publishing anyway")
+        return True
+
     def _publish_ready(self, block: bool) -> None:
         """Publish finished graphs from the front of the queue (in order)."""
-        while self.pending and (block or self.pending[0][0].done()):
+        while self.pending and (block or self.pending[0][0].done()) and self._downstream_ready(block):
             future, header = self.pending.popleft()
             graph = future.result()
             self.graph_pub.publish(graph_message(graph, header))

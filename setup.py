@@ -28,6 +28,7 @@ setup(
             "segmentation_node = trap_ros.segmentation_node:main",
             "mining_node = trap_ros.mining_node:main",
             "make_synthetic = trap_core.synthetic.cli:main",
+            "evaluate = trap_core.evaluation.report:main",
         ],
     },
 )

@@ -34,6 +34,11 @@ if [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
   echo "$want" > "$stamp"
 fi
 
+# py-motmetrics only for its TUD-Campus reference data (its numpy-2 code is not imported).
+if ! "$py" -c 'import importlib.util as u; assert u.find_spec("motmetrics")' 2>/dev/null; then
+  quiet "$py" -m pip install --no-deps motmetrics==1.4.0
+fi
+
 if ! "$py" -c 'import vision_msgs.msg' 2>/dev/null; then
   say "building vision_msgs into $venv"
   quiet "$py" -m pip install -r "$top/requirements-msgbuild.txt"

@@ -40,9 +40,11 @@ class TrapParams:
     freq_min: float = _p(0.0, "minimum frames holding a pattern: 0 = freq_st_min (paper), < 1 share, >= 1 frames")
     max_faces: int = _p(3, "largest pattern, in faces")
     method: str = _p("robust", "paper (TRAP as published) or robust (ours: README 'Method')")
-    min_speed: float = _p(0.5, "px/frame relative to the camera: slower patterns are background (robust)")
-    rejoin_similarity: float = _p(0.3, "Jaccard similarity of structures needed to rejoin fragments (robust)")
-    core_share: float = _p(0.5, "track box: regions in at least this share of the frame's occurrences (robust)")
+    one_path: bool = _p(True, "robust: link each pattern's occurrences one to one (one object, one path)")
+    min_speed: float = _p(0.5, "robust: px/frame relative to the camera below which patterns are background; 0 = off")
+    rejoin: bool = _p(True, "robust: rejoin fragments of one object across occlusions and exits")
+    rejoin_similarity: float = _p(0.3, "robust: Jaccard similarity of structures needed to rejoin fragments")
+    core_share: float = _p(0.5, "robust: track box from regions in at least this share of the occurrences; 0 = all")
     linkage: str = _p("average", "hierarchical clustering linkage: average, single, complete, weighted (ours)")
     ignore_top: float = _p(0.1, "share of the top levels of the hierarchy the lifetime cut ignores")
     n_objects: int = _p(0, "objects to track; 0 = found without supervision (ours)")
@@ -83,7 +85,7 @@ class TrapParams:
             return max(1, round(value * n_frames)) if value < 1 else int(value)
         return MiningParams(eps=self.eps, tau=self.tau, freq_st_min=frames(self.freq_st_min),
                             freq_min=frames(self.freq_min) if self.freq_min else None, max_faces=self.max_faces,
-                            linking="assignment" if self.method == "robust" else "graph")
+                            linking="assignment" if self.method == "robust" and self.one_path else "graph")
 
     @classmethod
     def descriptions(cls) -> dict[str, str]:
@@ -102,6 +104,8 @@ class TrapParams:
             kind = type(fields[name].default)
             if kind is int and isinstance(value, float) and not value.is_integer():
                 raise ParameterError(f"parameter {name} must be an integer, not {value!r}")
+            if kind is bool and not isinstance(value, bool):
+                raise ParameterError(f"parameter {name} must be true or false, not {value!r}")
             try:
                 typed[name] = kind(value)
             except (TypeError, ValueError):

@@ -45,7 +45,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams) -> TrackingResult:
     start = time.perf_counter()
     paths = trajectories(mined)
     clustered = np.arange(mined.n_st)
-    if robust:
+    if robust and params.min_speed > 0:
         observed = observed_paths(mined)
         speed = world_speed(observed, camera_transforms(observed, n_frames), mined.n_st)
         clustered = np.flatnonzero(speed >= params.min_speed)
@@ -57,7 +57,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams) -> TrackingResult:
     start = time.perf_counter()
     hierarchy = cluster_patterns(distances, len(sub_paths), params.linkage, params.ignore_top)
     labels = hierarchy.labels
-    if robust:
+    if robust and params.rejoin:
         labels = rejoin_fragments(labels, sub_paths, mined.st_pattern[clustered], n_frames,
                                   params.rejoin_similarity, params.tau)
     occurrences = np.diff(mined.st_offsets)[clustered]

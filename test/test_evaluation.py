@@ -1,0 +1,81 @@
+"""The paper's measures, the best cluster over every cut, baselines and the evaluate report."""
+from __future__ import annotations
+
+import json
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from trap_core.evaluation import box_precision_recall, cluster_precision_recall
+from trap_core.evaluation.baselines import run_baselines
+from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores
+from trap_core.pipeline import TrapParams, frame_graph, track
+from trap_core.synthetic import SceneConfig, render, write_synthetic
+
+
+def test_box_measures() -> None:
+    truth = {0: (0, 0, 10, 10), 1: (0, 0, 10, 10), 2: (0, 0, 10, 10)}
+    track = {0: (0, 0, 10, 10), 1: (5, 0, 10, 10)}  # frame 1: half inside, centre (10, 5) on the edge
+    precision, recall = box_precision_recall(track, truth)
+    assert precision == pytest.approx((100 + 50) / 200) and recall == pytest.approx(2 / 3)
+
+
+@pytest.fixture(scope="module")
+def paper_run():
+    cfg = SceneConfig(width=320, height=240, frames=150, seed=6)
+    truth = [{} for _ in range(cfg.objects)]
+    graphs = []
+    for frame in render(cfg):
+        graphs.append(frame_graph(frame.rgb, TrapParams(segmentation="colour")))
+        for obj, box in enumerate(frame.boxes):
+            if box:
+                truth[obj][frame.index] = box
+    return graphs, truth, track(graphs, TrapParams(segmentation="colour", method="paper", n_objects=3))
+
+
+def test_leaf_scores_agree_with_cluster_measures_and_best_beats_the_cut(paper_run) -> None:
+    graphs, truth, run = paper_run
+    patterns = np.arange(run.mining.n_st)
+    for gt in truth:
+        leaves = leaf_scores(run.mining, patterns, gt, len(graphs))
+        chosen = np.flatnonzero(run.labels == run.selected[0])
+        p, r = cluster_precision_recall(run.mining, chosen, gt)
+        good, total = leaves.good[chosen].sum(), leaves.total[chosen].sum()
+        assert p == pytest.approx(good / total)
+        assert r == pytest.approx(leaves.frames[chosen].any(axis=0).sum() / len(gt))
+        best_p, best_r = best_cluster(run.hierarchy, leaves)
+        assert best_p * best_r >= p * r - 1e-12
+        single = np.argmax(np.divide(leaves.good, leaves.total, out=np.zeros(len(patterns)), where=leaves.total > 0)
+                           * leaves.frames.sum(axis=1) / len(gt))
+        assert best_p * best_r >= leaves.good[single] / leaves.total[single] * leaves.frames[single].sum() / len(gt)
+
+
+def test_baselines_follow_an_easy_object() -> None:
+    cfg = SceneConfig(width=320, height=240, frames=40, seed=1, exits=False)
+    frames = list(render(cfg))
+    truth = [{f.index: f.boxes[o] for f in frames if f.boxes[o]} for o in range(cfg.objects)]
+    boxes = run_baselines((f.rgb for f in frames), truth, ["KCF", "MedianFlow"])
+    for name in ("KCF", "MedianFlow"):
+        precision, recall = box_precision_recall(boxes[name][0], truth[0])
+        assert precision > 0.5 and recall > 0.5, name
+
+
+def test_evaluate_writes_a_report(tmp_path: Path, venv_bin: Path) -> None:
+    bag, _ = write_synthetic(SceneConfig(width=320, height=240, frames=120, seed=2), tmp_path / "clip")
+    done = subprocess.run([str(venv_bin / "evaluate"), str(bag), "--out", str(tmp_path / "report"), "--baselines",
+                           "KCF", "-p", "segmentation:=colour"], capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr[-2000:]
+    report = (tmp_path / "report" / "report.md").read_text()
+    assert "| 1 |" in report and "| 3 |" in report and "TRAP robust" in report and "KCF" in report
+    data = json.loads((tmp_path / "report" / "report.json").read_text())
+    methods = data[0]["methods"]
+    assert list(methods) == ["paper", "+ one path per object", "+ camera motion", "+ rejoin fragments",
+                             "robust (+ core boxes)"]
+    assert all(0 <= o["box_p"] <= 1 for m in methods.values() for o in m["objects"])
+    assert (tmp_path / "report" / "tracks_clip.png").exists()
+    assert (tmp_path / "report" / "levels_clip_object1.png").exists()
+    missing = subprocess.run([str(venv_bin / "evaluate"), str(tmp_path / "nowhere")], capture_output=True,
+                             text=True, timeout=60)
+    assert missing.returncode == 1 and "no ground truth" in missing.stderr

@@ -17,7 +17,7 @@ from std_msgs.msg import Header, UInt64
 from vision_msgs.msg import Detection2DArray
 from visualization_msgs.msg import MarkerArray
 
-from trap_core.pipeline import GRAPH_STAGE, ParameterError, TrackingResult, TrapParams, track
+from trap_core.pipeline import GRAPH_STAGE, ParameterError, TrackingResult, TrapParams, frame_rate, track
 from trap_core.rag import PlaneGraph
 from trap_ros.messages import frame_detections, message_graph, track_arrays, trajectory_markers
 from trap_ros.parameters import declare_trap_parameters, trap_parameters
@@ -81,7 +81,8 @@ class MiningNode(Node):
         try:
             if len(graphs) >= 2:
                 self.get_logger().info(f"tracking over {len(graphs)} frames")
-                self.result = track(graphs, self.params)
+                stamps = [h.stamp.sec * 1_000_000_000 + h.stamp.nanosec for h in headers]
+                self.result = track(graphs, self.params, frame_rate(stamps))
                 published["detections"] = frame_detections(headers, self.result.tracks)
                 published["tracks"] = track_arrays(headers, self.result.tracks)
                 published["trajectories"] = [trajectory_markers(headers[0], self.result.tracks)]

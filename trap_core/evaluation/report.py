@@ -24,7 +24,7 @@ from trap_core.evaluation.mot_metrics import clear_mot, hota, idf1  # noqa: E402
 from trap_core.evaluation.paper_measures import box_precision_recall, cluster_precision_recall  # noqa: E402
 from trap_core.motformat import ground_truth_path, read_mot  # noqa: E402
 from trap_core.outputs import contact_sheet, sheet_frames  # noqa: E402
-from trap_core.pipeline import TrapParams, graphs_of, track  # noqa: E402
+from trap_core.pipeline import TrapParams, frame_rate, graphs_of, track  # noqa: E402
 from trap_core.pipeline.bag_run import THUMBNAIL_WIDTH  # noqa: E402
 from trap_core.progress import Progress  # noqa: E402
 
@@ -72,6 +72,7 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
     truth = _truth(gt_path)
     name = bag.name.removesuffix(bag.suffix) if bag.suffix else bag.name
     thumbnails: dict[int, np.ndarray] = {}
+    stamps: list[int] = []
     import cv2
     with open_image_stream(bag, topic) as stream:
         meter = Progress(stream.count, f"evaluate {name}: graphs")
@@ -81,6 +82,7 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
         def frames():
             nonlocal scale
             for frame in stream:
+                stamps.append(frame.stamp_ns)
                 if frame.index in wanted:
                     scale = min(1.0, THUMBNAIL_WIDTH / frame.rgb.shape[1])
                     thumbnails[frame.index] = cv2.resize(frame.rgb, None, fx=scale, fy=scale)
@@ -98,7 +100,7 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
         if overrides["method"] == "paper":  # the paper takes the number of objects as given
             params = dataclasses.replace(params, n_objects=len(truth))
         start = time.perf_counter()
-        run = track(graphs, params)
+        run = track(graphs, params, frame_rate(stamps))
         seconds = time.perf_counter() - start
         boxes = [{int(f): tuple(b) for f, b in zip(t.frames, t.boxes)} for t in run.tracks]
         matched = _match(boxes, truth)

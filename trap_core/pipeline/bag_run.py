@@ -14,7 +14,7 @@ from trap_core.bagio import open_image_stream
 from trap_core.outputs import contact_sheet, sheet_frames, write_tracks_mot
 from trap_core.pipeline.frames_to_graphs import graphs_of
 from trap_core.pipeline.params import TrapParams
-from trap_core.pipeline.tracking import TrackingResult, track
+from trap_core.pipeline.tracking import TrackingResult, frame_rate, track
 from trap_core.progress import Progress
 from trap_core.rag import PlaneGraph
 
@@ -35,8 +35,9 @@ class BagRun:
 
 
 def _frames_with_thumbnails(stream, wanted: set[int], thumbnails: dict[int, np.ndarray], scale: list[float],
-                            meter: Progress) -> Iterator[np.ndarray]:
+                            meter: Progress, stamps: list[int]) -> Iterator[np.ndarray]:
     for frame in stream:
+        stamps.append(frame.stamp_ns)
         if frame.index in wanted:
             factor = min(1.0, THUMBNAIL_WIDTH / frame.rgb.shape[1])
             scale[0] = factor
@@ -57,20 +58,21 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
     thumbnails: dict[int, np.ndarray] = {}
     scale = [1.0]
     graphs: list[PlaneGraph] = []
+    stamps: list[int] = []
     interrupted = False
     with open_image_stream(bag, topic) as stream:
         meter = Progress(stream.count, f"segmenting {stream.topic}")
         wanted = set(sheet_frames(stream.count).tolist())
         start = time.perf_counter()
         try:
-            for graph in graphs_of(_frames_with_thumbnails(stream, wanted, thumbnails, scale, meter), params):
+            for graph in graphs_of(_frames_with_thumbnails(stream, wanted, thumbnails, scale, meter, stamps), params):
                 graphs.append(graph)
         except KeyboardInterrupt:
             interrupted = True
         meter.finish()
         seconds["read_segment_graph"] = time.perf_counter() - start
         chosen_topic = stream.topic
-    result = track(graphs, params) if len(graphs) >= 2 else None
+    result = track(graphs, params, frame_rate(stamps[:len(graphs)])) if len(graphs) >= 2 else None
     if result is not None:
         seconds.update(result.seconds)
     run = BagRun(chosen_topic, len(graphs), graphs, result, seconds, {}, interrupted)

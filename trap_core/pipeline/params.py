@@ -41,10 +41,11 @@ class TrapParams:
     max_faces: int = _p(3, "largest pattern, in faces")
     method: str = _p("robust", "paper (TRAP as published) or robust (ours: README 'Method')")
     one_path: bool = _p(True, "robust: link each pattern's occurrences one to one (one object, one path)")
-    min_speed: float = _p(0.5, "robust: px/frame relative to the camera below which patterns are background; 0 = off")
+    min_speed: float = _p(0.04, "robust: image widths per second, relative to the camera, below which patterns "
+                                "are background (0.04 = 1 px/frame at 640 px, 25 Hz); 0 = off")
     rejoin: bool = _p(True, "robust: rejoin fragments of one object across occlusions and exits")
     rejoin_similarity: float = _p(0.3, "robust: Jaccard similarity of structures needed to rejoin fragments")
-    core_share: float = _p(0.5, "robust: track box from regions in at least this share of the occurrences; 0 = all")
+    core_share: float = _p(0.8, "robust: track box from regions in at least this share of the occurrences; 0 = all")
     linkage: str = _p("average", "hierarchical clustering linkage: average, single, complete, weighted (ours)")
     ignore_top: float = _p(0.1, "share of the top levels of the hierarchy the lifetime cut ignores")
     n_objects: int = _p(0, "objects to track; 0 = found without supervision (ours)")

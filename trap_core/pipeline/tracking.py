@@ -29,12 +29,20 @@ class TrackingResult:
     seconds: dict[str, float] = field(default_factory=dict)
 
 
-def track(graphs: Sequence[PlaneGraph], params: TrapParams) -> TrackingResult:
+def frame_rate(stamps_ns: Sequence[int], default: float = 25.0) -> float:
+    """Frames per second from header stamps (``default`` when they do not advance)."""
+    if len(stamps_ns) < 2 or stamps_ns[-1] <= stamps_ns[0]:
+        return default
+    return (len(stamps_ns) - 1) * 1e9 / (stamps_ns[-1] - stamps_ns[0])
+
+
+def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0) -> TrackingResult:
     """Run TRAP's stages 3-7 on the plane graphs of a whole video (frame i = graphs[i]).
 
     ``method="paper"``: every spatio-temporal pattern is clustered. ``"robust"`` (ours): one path
     per object when linking occurrences, only patterns that move relative to the camera's
-    motion are clustered, and fragments of one object are rejoined across gaps.
+    motion are clustered, and fragments of one object are rejoined across gaps. ``fps`` turns
+    ``min_speed`` (image widths per second) into pixels per frame.
     """
     seconds: dict[str, float] = {}
     n_frames = len(graphs)
@@ -48,7 +56,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams) -> TrackingResult:
     if robust and params.min_speed > 0:
         observed = observed_paths(mined)
         speed = world_speed(observed, camera_transforms(observed, n_frames), mined.n_st)
-        clustered = np.flatnonzero(speed >= params.min_speed)
+        width = float(graphs[0].bbox[:, 2].max() + 1)
+        clustered = np.flatnonzero(speed >= params.min_speed * width / fps)
     seconds["camera"] = time.perf_counter() - start
     start = time.perf_counter()
     sub_paths = paths.subset(clustered)

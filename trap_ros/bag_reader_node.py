@@ -7,7 +7,6 @@ the number of frames published once the bag is exhausted.
 """
 from __future__ import annotations
 
-import sys
 import threading
 import time
 
@@ -21,6 +20,7 @@ from std_msgs.msg import Header, UInt64
 from trap_core.bagio import BagError, open_image_stream
 from trap_core.progress import Progress
 from trap_ros.messages import image_message
+from trap_ros.node_main import run_node
 from trap_ros.qos import LATCHED, PIPELINE
 
 
@@ -141,21 +141,11 @@ class BagReaderNode(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    rclpy.init(args=args)
-    code = 0
-    try:
+    def body() -> int:
         node = BagReaderNode()
         node.start()
         while rclpy.ok() and not node.finished.is_set():
             rclpy.spin_once(node, timeout_sec=0.1)
-        code = 1 if node.error else 0
         node.destroy_node()
-    except BagError as error:
-        print(f"bag_reader: error: {error}", file=sys.stderr)
-        code = 1
-    except KeyboardInterrupt:
-        code = 130
-    finally:
-        if rclpy.ok():
-            rclpy.shutdown()
-    sys.exit(code)
+        return 1 if node.error else 0
+    run_node("bag_reader", body, args)

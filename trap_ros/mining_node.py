@@ -6,7 +6,6 @@ reader's flow control).
 """
 from __future__ import annotations
 
-import sys
 import threading
 from collections.abc import Callable
 
@@ -17,9 +16,10 @@ from std_msgs.msg import Header, UInt64
 from vision_msgs.msg import Detection2DArray
 from visualization_msgs.msg import MarkerArray
 
-from trap_core.pipeline import GRAPH_STAGE, ParameterError, TrackingResult, TrapParams, frame_rate, track
+from trap_core.pipeline import GRAPH_STAGE, TrackingResult, TrapParams, frame_rate, track
 from trap_core.rag import PlaneGraph
 from trap_ros.messages import frame_detections, message_graph, track_arrays, trajectory_markers
+from trap_ros.node_main import run_node
 from trap_ros.parameters import declare_trap_parameters, trap_parameters
 from trap_ros.qos import LATCHED, PIPELINE
 
@@ -104,21 +104,11 @@ class MiningNode(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    rclpy.init(args=args)
-    code = 0
-    try:
+    def body() -> int:
         node = MiningNode()
         while rclpy.ok() and not node.done.is_set():
             rclpy.spin_once(node, timeout_sec=0.1)
         for _ in range(20):  # let late subscribers fetch the latched results
             rclpy.spin_once(node, timeout_sec=0.05)
-        code = 1 if node.error else 0
-    except ParameterError as error:
-        print(f"mining: error: {error}", file=sys.stderr)
-        code = 1
-    except KeyboardInterrupt:
-        code = 130
-    finally:
-        if rclpy.ok():
-            rclpy.shutdown()
-    sys.exit(code)
+        return 1 if node.error else 0
+    run_node("mining", body, args)

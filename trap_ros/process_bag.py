@@ -99,7 +99,7 @@ def _main() -> int:
     split = argv.index("--ros-args") if "--ros-args" in argv else len(argv)
     args = build_parser().parse_args(argv[:split])
     ros_args = argv[split + 1:]
-    params = checked_parameters(ros_args, args.objects)
+    checked_parameters(ros_args, args.objects)  # refuse bad parameters before any node starts
     if (args.out / "tracks.mcap").exists():
         shutil.rmtree(args.out / "tracks.mcap")
     args.out.mkdir(parents=True, exist_ok=True)

@@ -17,8 +17,9 @@ from rclpy.node import Node
 from sensor_msgs.msg import CompressedImage, Image
 from visualization_msgs.msg import MarkerArray
 
-from trap_core.pipeline import GRAPH_STAGE, ParameterError, frame_graph
+from trap_core.pipeline import GRAPH_STAGE, frame_graph
 from trap_ros.messages import graph_markers, graph_message, image_rgb
+from trap_ros.node_main import run_node
 from trap_ros.parameters import declare_trap_parameters, trap_parameters
 from trap_ros.qos import PIPELINE
 
@@ -93,17 +94,8 @@ class SegmentationNode(Node):
 
 def main(args: list[str] | None = None) -> None:
     sys.setswitchinterval(0.0005)  # the executor and the segmentation threads trade the GIL per frame
-    rclpy.init(args=args)
-    code = 0
-    try:
-        node = SegmentationNode()
-        rclpy.spin(node)
-    except ParameterError as error:
-        print(f"segmentation: error: {error}", file=sys.stderr)
-        code = 1
-    except KeyboardInterrupt:
-        code = 130
-    finally:
-        if rclpy.ok():
-            rclpy.shutdown()
-    sys.exit(code)
+
+    def body() -> int:
+        rclpy.spin(SegmentationNode())
+        return 0
+    run_node("segmentation", body, args)

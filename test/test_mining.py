@@ -241,3 +241,24 @@ def test_compiled_miner_equals_reference_on_a_synthetic_video() -> None:
     np.testing.assert_allclose(compiled.occ_position[row], graph.centroid[nodes].mean(axis=0))
     np.testing.assert_array_equal(compiled.occ_box[row], [graph.bbox[nodes, 0].min(), graph.bbox[nodes, 1].min(),
                                                           graph.bbox[nodes, 2].max(), graph.bbox[nodes, 3].max()])
+
+
+def test_filtering_a_result_equals_mining_with_higher_thresholds() -> None:
+    rng = np.random.default_rng(31)
+    graphs = [_random_graph(rng, size=12) for _ in range(12)]
+    low = mine(graphs, MiningParams(eps=8.0, tau=3, freq_st_min=2, freq_min=2, max_faces=2))
+    high = mine(graphs, MiningParams(eps=8.0, tau=3, freq_st_min=4, freq_min=5, max_faces=2))
+    assert high.n_st < low.n_st
+    assert _node_sets(graphs, low.above(5, 4)) == _node_sets(graphs, high)
+
+
+def test_auto_frequency_lands_in_the_target_or_at_a_bound() -> None:
+    from trap_core.mining import mine_auto
+    from trap_core.segmentation import colour_components
+    from trap_core.synthetic import SceneConfig, render
+    frames = [f.rgb for f in render(SceneConfig(width=320, height=240, frames=60, seed=2))]
+    graphs = [build_plane_graph(*colour_components(rgb), rgb) for rgb in frames]
+    result, frequency = mine_auto(graphs, MiningParams(freq_st_min=30), target=(150, 400))
+    assert 150 <= result.n_st <= 400 or frequency in (1, 12)
+    assert frequency <= 12  # at most 20 % of the frames
+    assert result.freq_st().min() >= frequency

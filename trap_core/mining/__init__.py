@@ -1,8 +1,9 @@
 """Plane graphs over time to spatio-temporal patterns (DYPLAGRAM_ST, TRAP_SPEC section 3)."""
 
+from trap_core.mining.auto import mine_auto
 from trap_core.mining.errors import MiningError
 from trap_core.mining.miner import mine
 from trap_core.mining.params import LINKINGS, MiningParams
 from trap_core.mining.result import MiningResult
 
-__all__ = ["LINKINGS", "MiningError", "MiningParams", "MiningResult", "mine"]
+__all__ = ["LINKINGS", "MiningError", "MiningParams", "MiningResult", "mine", "mine_auto"]

@@ -47,3 +47,13 @@ class MiningResult:
         distinct = np.ones(frames.size, dtype=bool)
         distinct[1:] = (frames[1:] != frames[:-1]) | (owner[1:] != owner[:-1])
         return np.bincount(owner[distinct], minlength=self.n_st)
+
+    def above(self, min_freq: int, min_freq_st: int) -> MiningResult:
+        """The spatio-temporal patterns that higher thresholds would have kept: ``freq(P) >= min_freq``
+        and ``freq_st >= min_freq_st`` (mining is exact, so this equals mining again with them)."""
+        keep = (self.pattern_frequency[self.st_pattern] >= min_freq) & (self.freq_st() >= min_freq_st)
+        sizes = np.diff(self.st_offsets)[keep]
+        rows = np.concatenate([self.st(s) for s in np.flatnonzero(keep)]) if keep.any() else np.empty(0, np.int64)
+        return MiningResult(self.pattern_hash, self.pattern_frequency, self.pattern_faces, self.occ_frame,
+                            self.occ_pattern, self.occ_position, self.occ_box, self.occ_node_box, self.occ_faces,
+                            self.st_pattern[keep], np.r_[0, np.cumsum(sizes)].astype(np.int64), rows)

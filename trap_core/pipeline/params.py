@@ -37,6 +37,8 @@ class TrapParams:
     eps: float = _p(40.0, "px: occurrences closer than this in frames at most tau apart are linked")
     tau: int = _p(25, "frames: temporal threshold of occurrence linking")
     freq_st_min: float = _p(0.05, "minimum frames of a spatio-temporal pattern: < 1 share of the video, >= 1 frames")
+    auto_frequency: bool = _p(False, "choose freq = freq_st (from freq_st_min on) so 600..2000 patterns are found "
+                                     "(the paper's rule of thumb)")
     freq_min: float = _p(0.0, "minimum frames holding a pattern: 0 = freq_st_min (paper), < 1 share, >= 1 frames")
     max_faces: int = _p(3, "largest pattern, in faces")
     method: str = _p("robust", "paper (TRAP as published) or robust (ours: README 'Method')")

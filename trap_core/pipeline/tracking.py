@@ -9,7 +9,7 @@ import numpy as np
 
 from trap_core.clustering import (ClusterSummary, Hierarchy, Track, Trajectories, build_track, cluster_patterns,
                                   pattern_distances, select_clusters, summarise, trajectories)
-from trap_core.mining import MiningResult, mine
+from trap_core.mining import MiningResult, mine, mine_auto
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph
 from trap_core.robust import camera_transforms, observed_paths, rejoin_fragments, world_speed
@@ -48,7 +48,10 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0) -
     n_frames = len(graphs)
     robust = params.method == "robust"
     start = time.perf_counter()
-    mined = mine(graphs, params.mining(n_frames))
+    if params.auto_frequency:
+        mined, _ = mine_auto(graphs, params.mining(n_frames))
+    else:
+        mined = mine(graphs, params.mining(n_frames))
     seconds["mining"] = time.perf_counter() - start
     start = time.perf_counter()
     paths = trajectories(mined)

@@ -125,7 +125,7 @@ def main() -> None:
                 results[key].update(_process_bag(bag, Path(tmp) / f"out-{key}", segmentation))
             results[f"{preset} trackers"] = _trackers(bag)
     scaling = []
-    for frames in ((721, 2000) if args.quick else (721, 2000, 5600)):
+    for frames in ((100, 721, 2000) if args.quick else (100, 721, 2000, 5600)):
         done = subprocess.run([sys.executable, __file__, "--scaling-worker", str(frames)], capture_output=True,
                               text=True, check=True)
         scaling.append(json.loads(done.stdout.strip().splitlines()[-1]))

@@ -153,3 +153,34 @@ def test_bad_input() -> None:
         build_plane_graph(np.zeros((3, 3), dtype=np.int32), 2, np.zeros((3, 3, 3), dtype=np.uint8))
     with pytest.raises(GraphError, match="colour_bins"):
         build_plane_graph(np.zeros((3, 3), dtype=np.int32), 1, np.zeros((3, 3, 3), dtype=np.uint8), colour_bins=0)
+
+
+def test_contact_tolerance_makes_a_four_region_point_one_face_at_any_scale() -> None:
+    """A 1-pixel notch turns the 4-face of four blocks into two triangles; the tolerance,
+    relative to region size, restores the single face at two scales."""
+    for size in (20, 48):
+        labels = np.zeros((2 * size, 2 * size), dtype=np.int32)
+        labels[:size, size:] = 1
+        labels[size:, :size] = 2
+        labels[size:, size:] = 3
+        labels[size, size - 1] = 0  # pixel rounding: region 0 reaches down one pixel
+        labels[size - 1, size] = 3 if size == 48 else 1  # a second, different rounding at the larger scale
+
+        def inner_faces(tolerance: float) -> list[list[int]]:
+            graph = build_plane_graph(*relabel_4connected(labels), np.zeros(labels.shape + (3,), np.uint8),
+                                      contact_tolerance=tolerance)
+            _assert_valid_embedding(graph)
+            return [sorted(graph.face_nodes(f).tolist()) for f in range(graph.n_faces) if not graph.outer_faces()[f]]
+        assert len(inner_faces(0.0)) == 2
+        assert inner_faces(0.1) == [[0, 1, 2, 3]]
+
+
+def test_contact_tolerance_keeps_embeddings_valid() -> None:
+    rng = np.random.default_rng(9)
+    for _ in range(200):
+        height, width = rng.integers(2, 14, size=2)
+        labels, n = relabel_4connected(rng.integers(0, 5, size=(height, width)).astype(np.int32))
+        graph = build_plane_graph(labels, n, np.zeros((height, width, 3), np.uint8), contact_tolerance=0.7)
+        _assert_valid_embedding(graph)
+    with pytest.raises(GraphError, match="contact_tolerance"):
+        build_plane_graph(labels, n, np.zeros((height, width, 3), np.uint8), contact_tolerance=-1)

@@ -24,7 +24,7 @@ def frame_graph(rgb: np.ndarray, params: TrapParams) -> PlaneGraph:
     else:
         labels, n = felzenszwalb(rgb, k=params.k, sigma=params.sigma, min_size=params.min_size,
                                  threshold=params.threshold, connectivity=params.connectivity)
-    return build_plane_graph(labels, n, rgb, params.colour_bins)
+    return build_plane_graph(labels, n, rgb, params.colour_bins, params.contact_tolerance)
 
 
 def graphs_of(frames: Iterable[np.ndarray], params: TrapParams) -> Iterator[PlaneGraph]:

@@ -12,7 +12,8 @@ from trap_core.segmentation import THRESHOLD_MODES
 SEGMENTATIONS = ("felzenszwalb", "colour")
 METHODS = ("paper", "robust")
 # Which node needs which parameters (the segmentation node: stages 1-2; the mining node: 3-7).
-GRAPH_STAGE = ("segmentation", "k", "sigma", "min_size", "threshold", "connectivity", "colour_bins", "threads")
+GRAPH_STAGE = ("segmentation", "k", "sigma", "min_size", "threshold", "connectivity", "colour_bins",
+               "contact_tolerance", "threads")
 
 
 class ParameterError(ValueError):
@@ -34,6 +35,8 @@ class TrapParams:
     threshold: str = _p("constant", "constant (paper: tau = k) or size (original: tau = k/|C|)")
     connectivity: int = _p(4, "pixel connectivity of the segmentation: 4 or 8")
     colour_bins: int = _p(4, "levels per colour channel of the node labels (ours)")
+    contact_tolerance: float = _p(0.0, "drop contacts shorter than this x sqrt(smaller region area) px, so faces do "
+                                       "not flicker with pixel rounding (ours); 0 = keep all (paper)")
     eps: float = _p(40.0, "px: occurrences closer than this in frames at most tau apart are linked")
     tau: int = _p(25, "frames: temporal threshold of occurrence linking")
     freq_st_min: float = _p(0.05, "minimum frames of a spatio-temporal pattern: < 1 share of the video, >= 1 frames")
@@ -65,6 +68,7 @@ class TrapParams:
             (self.k >= 0 and self.sigma >= 0 and self.min_size >= 0, "k, sigma and min_size must be >= 0"),
             (self.connectivity in (4, 8), "connectivity must be 4 or 8"),
             (1 <= self.colour_bins <= 256, "colour_bins must be within 1..256"),
+            (self.contact_tolerance >= 0, "contact_tolerance must be >= 0"),
             (self.eps > 0 and self.tau >= 1, "eps must be > 0 and tau >= 1"),
             (self.freq_st_min > 0 and self.freq_min >= 0, "freq_st_min must be > 0 and freq_min >= 0"),
             (1 <= self.max_faces <= 8, "max_faces must be within 1..8"),

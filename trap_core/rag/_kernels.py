@@ -269,3 +269,59 @@ def region_stats(labels: np.ndarray, rgb: np.ndarray, n: int):
             box[r, 2] = max(box[r, 2], x)
             box[r, 3] = max(box[r, 3], y)
     return area, sums, box
+
+
+@nb.njit(cache=True, nogil=True)
+def drop_short_contacts(right, twin, rot_next, length, face_of, area, outside, tolerance):
+    """Remove contacts shorter than ``tolerance * sqrt(smaller region area)`` between two regions
+    (ours, TRAP_SPEC section 10 "face flicker"): a point where four regions meet then reads as one
+    face whatever the pixel rounding, at any scale. A contact is kept when removing it would not
+    merge two different faces (it is then a bridge) and when it touches the outside.
+    Returns the kept half-edges' (right, twin, rot_next, length), renumbered.
+    """
+    n = twin.size
+    prev = np.empty(n, dtype=np.int64)
+    for h in range(n):
+        prev[rot_next[h]] = h
+    parent = np.arange(face_of.max() + 1 if n else 1)
+    removed = np.zeros(n, dtype=np.bool_)
+    for h in np.argsort(length):  # shortest first
+        t = twin[h]
+        if h > t or removed[h]:
+            continue
+        u, v = right[h], right[t]
+        if u == outside or v == outside:
+            continue
+        if length[h] >= tolerance * np.sqrt(min(area[u], area[v])):
+            continue
+        fa, fb = face_of[h], face_of[t]
+        while parent[fa] != fa:
+            fa = parent[fa]
+        while parent[fb] != fb:
+            fb = parent[fb]
+        if fa == fb or rot_next[h] == h or rot_next[t] == t:
+            continue
+        parent[fb] = fa
+        for e in (h, t):
+            p, q = prev[e], rot_next[e]
+            rot_next[p] = q
+            prev[q] = p
+            removed[e] = True
+    index = np.full(n, -1, dtype=np.int64)
+    kept = 0
+    for h in range(n):
+        if not removed[h]:
+            index[h] = kept
+            kept += 1
+    new_right = np.empty(kept, dtype=right.dtype)
+    new_twin = np.empty(kept, dtype=np.int64)
+    new_next = np.empty(kept, dtype=np.int64)
+    new_length = np.empty(kept, dtype=length.dtype)
+    for h in range(n):
+        if not removed[h]:
+            k = index[h]
+            new_right[k] = right[h]
+            new_twin[k] = index[twin[h]]
+            new_next[k] = index[rot_next[h]]
+            new_length[k] = length[h]
+    return new_right, new_twin, new_next, new_length

@@ -5,7 +5,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from trap_core.rag._kernels import region_stats, rotation_system, trace_boundary_graph, trace_faces
+from trap_core.rag._kernels import (drop_short_contacts, region_stats, rotation_system, trace_boundary_graph,
+                                    trace_faces)
 from trap_core.rag.errors import GraphError
 
 
@@ -89,7 +90,8 @@ def colour_label(colour: np.ndarray, bins: int) -> np.ndarray:
     return (levels[:, 0] * bins + levels[:, 1]) * bins + levels[:, 2]
 
 
-def build_plane_graph(labels: np.ndarray, n_regions: int, rgb: np.ndarray, colour_bins: int = 4) -> PlaneGraph:
+def build_plane_graph(labels: np.ndarray, n_regions: int, rgb: np.ndarray, colour_bins: int = 4,
+                      contact_tolerance: float = 0.0) -> PlaneGraph:
     """Build the plane region adjacency graph of a label image.
 
     Parameters
@@ -102,6 +104,10 @@ def build_plane_graph(labels: np.ndarray, n_regions: int, rgb: np.ndarray, colou
         The frame, for mean colours.
     colour_bins : int
         Levels per channel of the node label (TRAP_SPEC section 2: label = discretised colour).
+    contact_tolerance : float
+        Contacts shorter than ``contact_tolerance * sqrt(area of the smaller region)`` pixels
+        are dropped where that merges two faces (ours: stable faces under pixel rounding, at any
+        scale); 0 keeps every contact.
 
     Returns
     -------
@@ -112,6 +118,8 @@ def build_plane_graph(labels: np.ndarray, n_regions: int, rgb: np.ndarray, colou
     """
     if labels.ndim != 2 or labels.shape != rgb.shape[:2] or labels.size == 0:
         raise GraphError(f"labels {labels.shape} and image {rgb.shape} do not match")
+    if not (np.isfinite(contact_tolerance) and contact_tolerance >= 0):
+        raise GraphError(f"contact_tolerance must be >= 0, not {contact_tolerance}")
     if not 1 <= colour_bins <= 256:
         raise GraphError(f"colour_bins must be within 1..256, not {colour_bins}")
     labels = np.ascontiguousarray(labels, dtype=np.int32)
@@ -123,5 +131,9 @@ def build_plane_graph(labels: np.ndarray, n_regions: int, rgb: np.ndarray, colou
     oi, oj, sdir, twin, left, right, length, area2, dart_of = trace_boundary_graph(labels, n_regions)
     rot_next = rotation_system(oi, oj, sdir, twin, right, area2, dart_of, n_regions + 1)
     face_of, face_half_edges, face_offsets = trace_faces(rot_next, twin)
+    if contact_tolerance > 0:
+        right, twin, rot_next, length = drop_short_contacts(right, twin, rot_next, length, face_of, area, n_regions,
+                                                            float(contact_tolerance))
+        face_of, face_half_edges, face_offsets = trace_faces(rot_next, twin)
     return PlaneGraph(n_regions, centroid, area, box, colour, colour_label(colour, colour_bins),
                       right, twin, rot_next, length, face_of, face_half_edges, face_offsets)

@@ -20,10 +20,6 @@ class Hierarchy:
     cut_level: int         # number of clusters at the cut
     labels: np.ndarray     # (n,) cluster of each pattern at the cut, 0..cut_level-1
 
-    def labels_at(self, level: int) -> np.ndarray:
-        """Cluster of each pattern at ``level`` (the partition with ``level`` clusters)."""
-        return labels_after_merges(self.linkage, self.n, self.n - level)
-
 
 def labels_after_merges(matrix: np.ndarray, n: int, merges: int) -> np.ndarray:
     """Partition after the first ``merges`` rows of a linkage matrix, clusters numbered 0.. by first member."""

@@ -102,7 +102,15 @@ def _scaling_worker(frames: int) -> None:
     print(json.dumps({"frames": frames, "graphs s": graph_seconds, "mining s": run.seconds["mining"],
                       "clustering s": run.seconds["camera"] + run.seconds["distances"] + run.seconds["clustering"],
                       "patterns": run.mining.n_st,
-                      "peak RSS MB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
+                      "peak RSS MB": _peak_rss_mb()}))
+
+
+def _peak_rss_mb() -> float:
+    """This process's own high-water mark (VmHWM; ru_maxrss would include the parent's at fork)."""
+    for line in Path("/proc/self/status").read_text().splitlines():
+        if line.startswith("VmHWM:"):
+            return int(line.split()[1]) / 1024
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
 def main() -> None:

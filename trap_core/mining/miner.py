@@ -33,10 +33,11 @@ def _frame_singles(graph: PlaneGraph) -> tuple[np.ndarray, np.ndarray]:
     return inner, hashes
 
 
-def _frequent(hashes: np.ndarray, frames: np.ndarray, minimum: int) -> tuple[np.ndarray, np.ndarray]:
-    """Hashes occurring in at least ``minimum`` distinct frames, and their frame counts."""
-    pairs = np.unique(np.column_stack([hashes, frames]), axis=0) if hashes.size else np.empty((0, 2), np.int64)
-    values, counts = np.unique(pairs[:, 0], return_counts=True)
+def _frequent(per_frame_hashes: list[np.ndarray], minimum: int) -> tuple[np.ndarray, np.ndarray]:
+    """Hashes occurring in at least ``minimum`` distinct frames, and their frame counts
+    (``per_frame_hashes[i]``: the hashes seen in frame i, each once)."""
+    values, counts = np.unique(np.concatenate(per_frame_hashes) if per_frame_hashes else np.empty(0, np.int64),
+                               return_counts=True)
     keep = counts >= minimum
     return values[keep], counts[keep]
 
@@ -59,10 +60,7 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
     MiningResult
     """
     singles = [_frame_singles(graph) for graph in graphs]
-    all_hashes = np.concatenate([h[inner] for inner, h in singles]) if singles else np.empty(0, np.int64)
-    all_frames = np.concatenate([np.full(inner.sum(), i) for i, (inner, _) in enumerate(singles)]) \
-        if singles else np.empty(0, np.int64)
-    frequent_faces, _ = _frequent(all_hashes, all_frames, params.frequency)
+    frequent_faces, _ = _frequent([np.unique(h[inner]) for inner, h in singles], params.frequency)
     chunks = []
     for index, (graph, (inner, hashes)) in enumerate(zip(graphs, singles)):
         allowed = inner & np.isin(hashes, frequent_faces)
@@ -71,22 +69,31 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
         set_hashes, sets = enumerate_face_sets(params.max_faces, allowed, adj_offsets, adj_targets,
                                                graph.he_origin, graph.he_twin, graph.he_next, graph.face_of,
                                                graph.face_half_edges, graph.face_offsets, graph.label, hashes)
-        chunks.append((index, set_hashes, sets))
+        chunks.append((set_hashes, sets.astype(np.int32)))
         if on_frame:
             on_frame(index + 1)
-    hashes = np.concatenate([c[1] for c in chunks]) if chunks else np.empty(0, np.int64)
-    frames = np.concatenate([np.full(c[1].size, c[0]) for c in chunks]) if chunks else np.empty(0, np.int64)
-    pattern_hash, pattern_frequency = _frequent(hashes, frames, params.frequency)
-    keep = np.isin(hashes, pattern_hash)
-    rows_by_frame = [(c[0], c[2][np.isin(c[1], pattern_hash)]) for c in chunks]
-    hashes, frames = hashes[keep], frames[keep]
-    geometry = [occurrence_geometry(sets, graphs[i].he_origin, graphs[i].face_half_edges, graphs[i].face_offsets,
-                                    graphs[i].centroid, graphs[i].bbox) for i, sets in rows_by_frame]
-    width = params.max_faces
-    occ_faces = np.concatenate([s for _, s in rows_by_frame]) if rows_by_frame else np.empty((0, width), np.int64)
-    position = np.concatenate([g[0] for g in geometry]) if geometry else np.empty((0, 2))
-    box = np.concatenate([g[1] for g in geometry]) if geometry else np.empty((0, 4))
-    node_box = np.concatenate([g[2] for g in geometry]) if geometry else np.empty((0, 4))
+    pattern_hash, pattern_frequency = _frequent([np.unique(h) for h, _ in chunks], params.frequency)
+    frames_list, hashes_list, faces_list, position_list, box_list, node_box_list = [], [], [], [], [], []
+    for index, (set_hashes, sets) in enumerate(chunks):
+        kept = np.isin(set_hashes, pattern_hash)
+        sets = sets[kept]
+        position, box, node_box = occurrence_geometry(sets, graphs[index].he_origin, graphs[index].face_half_edges,
+                                                      graphs[index].face_offsets, graphs[index].centroid,
+                                                      graphs[index].bbox)
+        frames_list.append(np.full(sets.shape[0], index, dtype=np.int64))
+        hashes_list.append(set_hashes[kept])
+        faces_list.append(sets)
+        position_list.append(position)
+        box_list.append(box.astype(np.float32))
+        node_box_list.append(node_box.astype(np.float32))
+        chunks[index] = None  # the unfiltered face sets are the largest temporary: free them as we go
+    frames = np.concatenate(frames_list) if frames_list else np.empty(0, np.int64)
+    hashes = np.concatenate(hashes_list) if hashes_list else np.empty(0, np.int64)
+    occ_faces = np.concatenate(faces_list) if faces_list else np.empty((0, params.max_faces), np.int32)
+    position = np.concatenate(position_list) if position_list else np.empty((0, 2))
+    box = np.concatenate(box_list) if box_list else np.empty((0, 4), np.float32)
+    node_box = np.concatenate(node_box_list) if node_box_list else np.empty((0, 4), np.float32)
+    del frames_list, hashes_list, faces_list, position_list, box_list, node_box_list
     pattern = np.searchsorted(pattern_hash, hashes)
     order = np.lexsort((frames, pattern))
     starts = np.searchsorted(pattern[order], np.arange(pattern_hash.size + 1))
@@ -96,8 +103,11 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
                                                   params.freq_st_min)
     pattern_faces = np.zeros(pattern_hash.size, dtype=np.int64)
     pattern_faces[pattern] = (occ_faces >= 0).sum(axis=1)
-    return MiningResult(pattern_hash, pattern_frequency, pattern_faces, frames + first_frame, pattern, position,
-                        box, node_box, occ_faces, st_pattern, st_offsets, st_rows)
+    # Keep only the occurrences of kept spatio-temporal patterns.
+    used = np.unique(st_rows)
+    return MiningResult(pattern_hash, pattern_frequency, pattern_faces, frames[used] + first_frame, pattern[used],
+                        position[used], box[used], node_box[used], occ_faces[used], st_pattern, st_offsets,
+                        np.searchsorted(used, st_rows))
 
 
 def _components(component: np.ndarray, pattern: np.ndarray, frames: np.ndarray, rows: np.ndarray,

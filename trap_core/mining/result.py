@@ -21,9 +21,9 @@ class MiningResult:
     occ_frame: np.ndarray          # (N,) int64
     occ_pattern: np.ndarray        # (N,) int64
     occ_position: np.ndarray       # (N, 2) mean barycentre of the occurrence's nodes
-    occ_box: np.ndarray            # (N, 4) x0, y0, x1, y1 of its regions' pixels (inclusive)
-    occ_node_box: np.ndarray       # (N, 4) extent of its nodes' barycentres
-    occ_faces: np.ndarray          # (N, max_faces) face ids in the frame's graph, -1 padded
+    occ_box: np.ndarray            # (N, 4) float32 x0, y0, x1, y1 of its regions' pixels (inclusive)
+    occ_node_box: np.ndarray       # (N, 4) float32 extent of its nodes' barycentres
+    occ_faces: np.ndarray          # (N, max_faces) int32 face ids in the frame's graph, -1 padded
     st_pattern: np.ndarray         # (S,) plane pattern of each spatio-temporal pattern
     st_offsets: np.ndarray         # (S+1,)
     st_rows: np.ndarray            # occurrence rows of all spatio-temporal patterns

@@ -39,7 +39,8 @@ class TrapParams:
                                        "not flicker with pixel rounding (ours); 0 = keep all (paper)")
     eps: float = _p(40.0, "px: occurrences closer than this in frames at most tau apart are linked")
     tau: int = _p(25, "frames: temporal threshold of occurrence linking")
-    freq_st_min: float = _p(0.05, "minimum frames of a spatio-temporal pattern: < 1 share of the video, >= 1 frames")
+    freq_st_min: float = _p(36.0, "minimum frames of a spatio-temporal pattern: >= 1 frames (36 = 1.4 s at 25 Hz), "
+                                  "< 1 share of the video")
     auto_frequency: bool = _p(False, "choose freq = freq_st (from freq_st_min on) so 600..2000 patterns are found "
                                      "(the paper's rule of thumb)")
     freq_min: float = _p(0.0, "minimum frames holding a pattern: 0 = freq_st_min (paper), < 1 share, >= 1 frames")

@@ -15,8 +15,6 @@ import threading
 import time
 from pathlib import Path
 
-import cv2
-import numpy as np
 import rclpy
 import yaml
 from rclpy.executors import MultiThreadedExecutor
@@ -24,9 +22,9 @@ from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
 
 from trap_core.cli import UsageError, run_main
-from trap_core.outputs import sheet_frames
+from trap_core.outputs import Thumbnails
 from trap_core.pipeline import BagRun, ParameterError, TrapParams
-from trap_core.pipeline.bag_run import THUMBNAIL_WIDTH, write_outputs
+from trap_core.pipeline.bag_run import write_outputs
 from trap_core.progress import Progress
 from trap_ros.bag_reader_node import BagReaderNode
 from trap_ros.mining_node import MiningNode
@@ -77,23 +75,6 @@ def checked_parameters(ros_args: list[str], objects: int | None) -> TrapParams:
         raise UsageError(str(error)) from None
 
 
-class ThumbnailKeeper:
-    """Keeps small copies of the frames the contact sheet will show."""
-
-    def __init__(self, total: int) -> None:
-        self.wanted = set(sheet_frames(total).tolist())
-        self.images: dict[int, np.ndarray] = {}
-        self.scale = 1.0
-        self.next_index = 0
-
-    def __call__(self, rgb: np.ndarray) -> None:
-        if self.next_index in self.wanted:
-            self.scale = min(1.0, THUMBNAIL_WIDTH / rgb.shape[1])
-            self.images[self.next_index] = cv2.resize(rgb, None, fx=self.scale, fy=self.scale,
-                                                      interpolation=cv2.INTER_AREA)
-        self.next_index += 1
-
-
 def _main() -> int:
     argv = sys.argv[1:]
     split = argv.index("--ros-args") if "--ros-args" in argv else len(argv)
@@ -110,7 +91,7 @@ def _main() -> int:
         reader = BagReaderNode(parameter_overrides=[Parameter("bag", value=str(args.bag)),
                                                     Parameter("topic", value=args.topic or "")])
         nodes.append(reader)
-        keeper = ThumbnailKeeper(reader.total or 0)
+        keeper = Thumbnails(reader.total or 0)
         reader.frame_hook = keeper
         markers = any(a.startswith("publish_markers:=") for a in ros_args)
         segmentation = SegmentationNode(parameter_overrides=[] if markers else [Parameter("publish_markers", value=False)])

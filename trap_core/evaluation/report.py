@@ -23,9 +23,9 @@ from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores, level
 from trap_core.evaluation.mot_metrics import clear_mot, hota, idf1  # noqa: E402
 from trap_core.evaluation.paper_measures import box_precision_recall, cluster_precision_recall  # noqa: E402
 from trap_core.motformat import ground_truth_path, read_mot  # noqa: E402
-from trap_core.outputs import contact_sheet, sheet_frames  # noqa: E402
+from trap_core.outputs import Thumbnails, contact_sheet  # noqa: E402
 from trap_core.pipeline import TrapParams, frame_rate, graphs_of, track  # noqa: E402
-from trap_core.pipeline.bag_run import THUMBNAIL_WIDTH  # noqa: E402
+from trap_core.pipeline.bag_run import stamped_frames  # noqa: E402
 from trap_core.progress import Progress  # noqa: E402
 
 # The ablation: the paper's method, then each step of the robust one added in turn.
@@ -71,25 +71,12 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
                  ) -> dict:
     truth = _truth(gt_path)
     name = bag.name.removesuffix(bag.suffix) if bag.suffix else bag.name
-    thumbnails: dict[int, np.ndarray] = {}
     stamps: list[int] = []
-    import cv2
     with open_image_stream(bag, topic) as stream:
         meter = Progress(stream.count, f"evaluate {name}: graphs")
-        wanted = set(sheet_frames(stream.count).tolist())
-        scale = 1.0
-
-        def frames():
-            nonlocal scale
-            for frame in stream:
-                stamps.append(frame.stamp_ns)
-                if frame.index in wanted:
-                    scale = min(1.0, THUMBNAIL_WIDTH / frame.rgb.shape[1])
-                    thumbnails[frame.index] = cv2.resize(frame.rgb, None, fx=scale, fy=scale)
-                meter.advance()
-                yield frame.rgb
+        thumbnails = Thumbnails(stream.count)
         start = time.perf_counter()
-        graphs = list(graphs_of(frames(), base))
+        graphs = list(graphs_of(stamped_frames(stream, thumbnails, meter, stamps), base))
         graph_seconds = time.perf_counter() - start
         meter.finish()
     n_frames = len(graphs)
@@ -122,7 +109,8 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
                                                                     out / f"levels_{name}_object{o + 1}.png",
                                                                     f"{name}, object {o + 1}"))
         if label.startswith("robust"):
-            result["sheet"] = str(contact_sheet(thumbnails, run.tracks, scale, out / f"tracks_{name}.png"))
+            result["sheet"] = str(contact_sheet(thumbnails.images, run.tracks, thumbnails.scale,
+                                                out / f"tracks_{name}.png"))
         result["methods"][label] = entry
     if baselines:
         with open_image_stream(bag, topic) as stream:

@@ -35,6 +35,25 @@ def sheet_frames(n_frames: int, count: int = 12) -> np.ndarray:
     return np.unique(np.linspace(0, max(n_frames - 1, 0), min(count, max(n_frames, 1))).round().astype(int))
 
 
+class Thumbnails:
+    """Small copies of the frames a contact sheet of a ``total``-frame video will show, kept
+    while the frames stream past (call with every frame, in order)."""
+
+    def __init__(self, total: int, width: int = 320) -> None:
+        self.wanted = set(sheet_frames(total).tolist())
+        self.width = width
+        self.images: dict[int, np.ndarray] = {}
+        self.scale = 1.0
+        self.next_index = 0
+
+    def __call__(self, rgb: np.ndarray) -> None:
+        if self.next_index in self.wanted:
+            self.scale = min(1.0, self.width / rgb.shape[1])
+            self.images[self.next_index] = cv2.resize(rgb, None, fx=self.scale, fy=self.scale,
+                                                      interpolation=cv2.INTER_AREA)
+        self.next_index += 1
+
+
 def contact_sheet(thumbnails: dict[int, np.ndarray], tracks: list[Track], scale: float, path: str | Path,
                   columns: int = 4) -> Path:
     """Write a grid of thumbnails (frame index -> RGB, already scaled by ``scale``) with the tracks drawn."""

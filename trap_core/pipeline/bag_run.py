@@ -7,19 +7,15 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
-import cv2
 import numpy as np
 
 from trap_core.bagio import open_image_stream
-from trap_core.outputs import contact_sheet, sheet_frames, write_tracks_mot
+from trap_core.outputs import Thumbnails, contact_sheet, write_tracks_mot
 from trap_core.pipeline.frames_to_graphs import graphs_of
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.tracking import TrackingResult, frame_rate, track
 from trap_core.progress import Progress
 from trap_core.rag import PlaneGraph
-
-THUMBNAIL_WIDTH = 320
-
 
 @dataclass
 class BagRun:
@@ -34,14 +30,11 @@ class BagRun:
     interrupted: bool = False
 
 
-def _frames_with_thumbnails(stream, wanted: set[int], thumbnails: dict[int, np.ndarray], scale: list[float],
-                            meter: Progress, stamps: list[int]) -> Iterator[np.ndarray]:
+def stamped_frames(stream, thumbnails: Thumbnails, meter: Progress, stamps: list[int]) -> Iterator[np.ndarray]:
+    """The frames' pixels, keeping their stamps and the contact sheet's thumbnails on the way."""
     for frame in stream:
         stamps.append(frame.stamp_ns)
-        if frame.index in wanted:
-            factor = min(1.0, THUMBNAIL_WIDTH / frame.rgb.shape[1])
-            scale[0] = factor
-            thumbnails[frame.index] = cv2.resize(frame.rgb, None, fx=factor, fy=factor, interpolation=cv2.INTER_AREA)
+        thumbnails(frame.rgb)
         meter.advance()
         yield frame.rgb
 
@@ -55,17 +48,15 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     seconds: dict[str, float] = {}
-    thumbnails: dict[int, np.ndarray] = {}
-    scale = [1.0]
     graphs: list[PlaneGraph] = []
     stamps: list[int] = []
     interrupted = False
     with open_image_stream(bag, topic) as stream:
         meter = Progress(stream.count, f"segmenting {stream.topic}")
-        wanted = set(sheet_frames(stream.count).tolist())
+        thumbnails = Thumbnails(stream.count)
         start = time.perf_counter()
         try:
-            for graph in graphs_of(_frames_with_thumbnails(stream, wanted, thumbnails, scale, meter, stamps), params):
+            for graph in graphs_of(stamped_frames(stream, thumbnails, meter, stamps), params):
                 graphs.append(graph)
         except KeyboardInterrupt:
             interrupted = True
@@ -76,7 +67,7 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
     if result is not None:
         seconds.update(result.seconds)
     run = BagRun(chosen_topic, len(graphs), graphs, result, seconds, {}, interrupted)
-    write_outputs(run, bag, out, params, thumbnails, scale[0])
+    write_outputs(run, bag, out, params, thumbnails.images, thumbnails.scale)
     if interrupted:
         raise KeyboardInterrupt
     return run

@@ -35,18 +35,11 @@ def summarise(labels: np.ndarray, tracks: Trajectories, occurrences_per_pattern:
         covered[cluster, span] = True
         sums[cluster, span] += tracks.of(pattern)
         counts[cluster, span] += 1
-    starts, ends, pieces = [], [], []
+    samples = []
     for cluster in range(n_clusters):
         frames = np.flatnonzero(covered[cluster])
-        span = np.arange(frames[0], frames[-1] + 1)
-        mean = sums[cluster, frames] / counts[cluster, frames, None]
-        pieces.append(np.column_stack([np.interp(span, frames, mean[:, axis]) for axis in (0, 1)]))
-        starts.append(frames[0])
-        ends.append(frames[-1])
-    sizes = np.array([len(p) for p in pieces], dtype=np.int64)
-    paths = Trajectories(np.array(starts, dtype=np.int64), np.array(ends, dtype=np.int64),
-                         np.r_[0, np.cumsum(sizes)].astype(np.int64),
-                         np.concatenate(pieces) if pieces else np.empty((0, 2)))
+        samples.append((frames, sums[cluster, frames] / counts[cluster, frames, None]))
+    paths = Trajectories.from_samples(samples)
     return ClusterSummary(covered, np.bincount(labels, minlength=n_clusters),
                           np.bincount(labels, weights=occurrences_per_pattern, minlength=n_clusters).astype(np.int64),
                           paths)

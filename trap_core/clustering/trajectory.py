@@ -30,26 +30,35 @@ class Trajectories:
 
     def subset(self, index: np.ndarray) -> Trajectories:
         """The trajectories of patterns ``index``, renumbered 0..len(index)-1."""
-        sizes = self.end[index] - self.start[index] + 1
-        points = np.concatenate([self.of(i) for i in index]) if len(index) else np.empty((0, 2))
-        return Trajectories(self.start[index], self.end[index], np.r_[0, np.cumsum(sizes)].astype(np.int64), points)
+        return Trajectories.pack(self.start[index], [self.of(i) for i in index])
+
+    @staticmethod
+    def pack(starts: np.ndarray | list[int], pieces: list[np.ndarray]) -> Trajectories:
+        """Trajectories from each one's first frame and its points, one per frame from there on."""
+        sizes = np.array([len(p) for p in pieces], dtype=np.int64)
+        starts = np.asarray(starts, dtype=np.int64).reshape(-1)
+        return Trajectories(starts, starts + sizes - 1, np.r_[0, np.cumsum(sizes)].astype(np.int64),
+                            np.concatenate(pieces) if pieces else np.empty((0, 2)))
+
+    @staticmethod
+    def from_samples(samples: list[tuple[np.ndarray, np.ndarray]]) -> Trajectories:
+        """One trajectory per ``(frames, points)``: points at those (sorted, distinct) frames,
+        linearly interpolated across the frames between them (TRAP_SPEC section 4)."""
+        pieces = []
+        for frames, points in samples:
+            span = np.arange(frames[0], frames[-1] + 1)
+            pieces.append(np.column_stack([np.interp(span, frames, points[:, axis]) for axis in (0, 1)]))
+        return Trajectories.pack([frames[0] for frames, _ in samples], pieces)
 
 
 def trajectories(result: MiningResult) -> Trajectories:
     """Build the trajectory of every spatio-temporal pattern of ``result``."""
-    starts, ends, pieces = [], [], []
+    samples = []
     for s in range(result.n_st):
         rows = result.st(s)
-        frames = result.occ_frame[rows]
-        known, inverse = np.unique(frames, return_inverse=True)
+        known, inverse = np.unique(result.occ_frame[rows], return_inverse=True)
         counts = np.bincount(inverse)
         mean = np.column_stack([np.bincount(inverse, weights=result.occ_position[rows, axis]) / counts
                                 for axis in (0, 1)])
-        span = np.arange(known[0], known[-1] + 1)
-        pieces.append(np.column_stack([np.interp(span, known, mean[:, axis]) for axis in (0, 1)]))
-        starts.append(known[0])
-        ends.append(known[-1])
-    sizes = np.array([len(p) for p in pieces], dtype=np.int64)
-    return Trajectories(np.array(starts, dtype=np.int64), np.array(ends, dtype=np.int64),
-                        np.r_[0, np.cumsum(sizes)].astype(np.int64),
-                        np.concatenate(pieces) if pieces else np.empty((0, 2)))
+        samples.append((known, mean))
+    return Trajectories.from_samples(samples)

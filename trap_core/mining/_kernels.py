@@ -70,6 +70,18 @@ def _in(values, length, x):
     return -1
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def _order_from(tokens, best, best_len, start, stop):
+    """Compare ``tokens[start:stop]`` with the same slice of ``best``: -1 larger (or longer than
+    best), 1 smaller, 0 equal so far."""
+    for i in range(start, stop):
+        if i >= best_len or tokens[i] > best[i]:
+            return -1
+        if tokens[i] < best[i]:
+            return 1
+    return 0
+
+
 @nb.njit(cache=True, nogil=True)
 def _traverse(start, faces, n_faces, he_origin, he_twin, he_next, face_of, face_offsets, label,
               tokens, best, best_len, queue, face_ids, node_ids):
@@ -114,12 +126,10 @@ def _traverse(start, faces, n_faces, he_origin, he_twin, he_next, face_of, face_
                 tokens[pos + 2] = _OPEN
                 tokens[pos + 3] = 0
             if not smaller:
-                for i in range(pos, pos + 4):
-                    if i >= best_len or tokens[i] > best[i]:
-                        return -1
-                    if tokens[i] < best[i]:
-                        smaller = True
-                        break
+                order = _order_from(tokens, best, best_len, pos, pos + 4)
+                if order < 0:
+                    return -1
+                smaller = order > 0
             pos += 4
             h = he_next[twin]
             if h == entry:
@@ -127,12 +137,10 @@ def _traverse(start, faces, n_faces, he_origin, he_twin, he_next, face_of, face_
         tokens[pos] = _END
         tokens[pos + 1] = 0
         if not smaller:
-            for i in range(pos, pos + 2):
-                if i >= best_len or tokens[i] > best[i]:
-                    return -1
-                if tokens[i] < best[i]:
-                    smaller = True
-                    break
+            order = _order_from(tokens, best, best_len, pos, pos + 2)
+            if order < 0:
+                return -1
+            smaller = order > 0
         pos += 2
     if not smaller:  # equal to the best so far
         return -1

@@ -2,12 +2,11 @@
 from __future__ import annotations
 
 import json
-import os
-import sys
-from pathlib import Path
 
 import pytest
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+from trap_ros.recording import share_dir
 
 # Field definitions of vision_msgs 4.1.1 (the Jazzy release), as published upstream.
 UPSTREAM_4_1_1 = {
@@ -31,26 +30,17 @@ def _upstream_hashes() -> dict[str, str]:
     return {name: store.hash_rihs01(f"vision_msgs/msg/{name}") for name in UPSTREAM_4_1_1}
 
 
-def _installed_share(package: str) -> Path:
-    """share/<package> of the ament prefixes in use, or of this venv (where setup_env.sh builds it)."""
-    prefixes = [p for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p] + [sys.prefix]
-    for prefix in prefixes:
-        if (Path(prefix) / "share" / package / "msg").is_dir():
-            return Path(prefix) / "share" / package
-    raise AssertionError(f"{package} is not installed in {prefixes}")
-
-
 @pytest.mark.parametrize("name", sorted(UPSTREAM_4_1_1))
 def test_installed_type_hash_matches_upstream(name: str) -> None:
     pytest.importorskip("vision_msgs.msg")
-    description = json.loads((_installed_share("vision_msgs") / "msg" / f"{name}.json").read_text())
+    description = json.loads((share_dir("vision_msgs") / "msg" / f"{name}.json").read_text())
     installed = {h["type_name"]: h["hash_string"] for h in description["type_hashes"]}
     assert installed[f"vision_msgs/msg/{name}"] == _upstream_hashes()[name]
 
 
 def test_method_agrees_with_a_known_installed_type() -> None:
     """The hash computation used above reproduces the sensor_msgs/Image hash of the Jazzy wheels."""
-    description = json.loads((_installed_share("sensor_msgs") / "msg" / "Image.json").read_text())
+    description = json.loads((share_dir("sensor_msgs") / "msg" / "Image.json").read_text())
     installed = {h["type_name"]: h["hash_string"] for h in description["type_hashes"]}
     assert installed["sensor_msgs/msg/Image"] == get_typestore(Stores.ROS2_JAZZY).hash_rihs01("sensor_msgs/msg/Image")
 

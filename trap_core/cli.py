@@ -4,6 +4,8 @@ from __future__ import annotations
 import sys
 from collections.abc import Callable
 
+import yaml
+
 from trap_core.bagio import BagError
 
 EXIT_ERROR = 1
@@ -12,6 +14,14 @@ EXIT_INTERRUPTED = 130
 
 class UsageError(Exception):
     """A parameter is out of range or inconsistent; the message is one line for the user."""
+
+
+def parameter_assignment(item: str) -> tuple[str, object]:
+    """``name:=value`` (as after ROS's ``-p``) -> ``(name, value)``, the value read as YAML."""
+    name, sep, text = item.partition(":=")
+    if not sep:
+        raise UsageError(f"-p takes name:=value, not {item!r}")
+    return name, yaml.safe_load(text)
 
 
 def run_main(main: Callable[[], int | None], name: str) -> int:

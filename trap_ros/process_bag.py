@@ -21,7 +21,7 @@ from rclpy.executors import MultiThreadedExecutor
 from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
 
-from trap_core.cli import UsageError, run_main
+from trap_core.cli import UsageError, parameter_assignment, run_main
 from trap_core.outputs import Thumbnails
 from trap_core.pipeline import BagRun, ParameterError, TrapParams
 from trap_core.pipeline.bag_run import write_outputs
@@ -61,10 +61,8 @@ def checked_parameters(ros_args: list[str], objects: int | None) -> TrapParams:
                 if isinstance(body, dict) and isinstance(body.get("ros__parameters"), dict):
                     values.update(body["ros__parameters"])
         elif ros_args[i] == "-p":
-            name, sep, text = ros_args[i + 1].partition(":=")
-            if not sep:
-                raise UsageError(f"-p takes name:=value, not {ros_args[i + 1]!r}")
-            values[name] = yaml.safe_load(text)
+            name, value = parameter_assignment(ros_args[i + 1])
+            values[name] = value
         i += 2 if ros_args[i] in ("--params-file", "-p") else 1
     values = {k: v for k, v in values.items() if k not in READER_PARAMETERS}
     if objects is not None:

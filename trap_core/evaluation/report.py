@@ -17,7 +17,7 @@ import numpy as np  # noqa: E402
 from scipy.optimize import linear_sum_assignment  # noqa: E402
 
 from trap_core.bagio import open_image_stream  # noqa: E402
-from trap_core.cli import UsageError, run_main  # noqa: E402
+from trap_core.cli import UsageError, parameter_assignment, run_main  # noqa: E402
 from trap_core.evaluation.baselines import TRACKERS, run_baselines  # noqa: E402
 from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores, level_curves  # noqa: E402
 from trap_core.evaluation.mot_metrics import clear_mot, hota, idf1  # noqa: E402
@@ -205,19 +205,12 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _main() -> int:
-    import yaml
     args = build_parser().parse_args()
     baselines = [] if args.baselines == "none" else [b for b in args.baselines.split(",") if b]
     unknown = [b for b in baselines if b not in TRACKERS]
     if unknown:
         raise UsageError(f"unknown baseline(s) {', '.join(unknown)} (known: {', '.join(TRACKERS)})")
-    values = {}
-    for item in args.overrides:
-        key, sep, text = item.partition(":=")
-        if not sep:
-            raise UsageError(f"-p takes name:=value, not {item!r}")
-        values[key] = yaml.safe_load(text)
-    base = TrapParams.from_mapping(values)
+    base = TrapParams.from_mapping(dict(parameter_assignment(item) for item in args.overrides))
     args.out.mkdir(parents=True, exist_ok=True)
     results = []
     for bag in args.bags:

@@ -70,13 +70,22 @@ class MiningNode(Node):
             ready = self.expected is not None and len(self.graphs) >= self.expected and not self._started
             self._started = self._started or ready
         if ready:
-            threading.Thread(target=self.finish, name="trap-tracking", daemon=True).start()
+            threading.Thread(target=self._track_and_publish, name="trap-tracking", daemon=True).start()
 
     def finish(self) -> None:
-        """Track over the graphs received so far and publish (also used after an interrupt)."""
+        """Track over the graphs received so far and publish (after an interrupt); if tracking
+        has started already, wait for it instead of tracking twice."""
+        with self._lock:
+            running = self._started
+            self._started = True
+        if running:
+            self.done.wait()
+        else:
+            self._track_and_publish()
+
+    def _track_and_publish(self) -> None:
         with self._lock:
             graphs, headers = list(self.graphs), list(self.headers)
-            self._started = True
         published: dict[str, list] = {"detections": [], "tracks": [], "trajectories": []}
         try:
             if len(graphs) >= 2:

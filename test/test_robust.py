@@ -71,26 +71,48 @@ def test_rejoin_joins_same_structure_across_a_gap_but_not_overlapping_lookalikes
     assert np.unique(different).size == 3
 
 
-@pytest.mark.parametrize("preset", ["anim1", "anim2"])
-def test_robust_beats_paper_on_a_short_video(preset: str) -> None:
-    cfg = SceneConfig(width=320, height=240, frames=240, seed=1, **PRESETS[preset])
+_BASE = TrapParams(segmentation="colour", eps=20.0, tau=25)
+
+
+@pytest.fixture(scope="module", params=["anim1", "anim2"])
+def short_video(request) -> tuple[list, list[dict[int, tuple]]]:
+    """Graphs and ground-truth boxes of a short 320x240 analogue."""
+    cfg = SceneConfig(width=320, height=240, frames=240, seed=1, **PRESETS[request.param])
     truth: list[dict[int, tuple]] = [{} for _ in range(cfg.objects)]
     graphs = []
-    base = TrapParams(segmentation="colour", eps=20.0, tau=25)
     for frame in render(cfg):
-        graphs.append(frame_graph(frame.rgb, base))
+        graphs.append(frame_graph(frame.rgb, _BASE))
         for obj, box in enumerate(frame.boxes):
             if box:
                 truth[obj][frame.index] = box
+    return graphs, truth
+
+
+def _boxes(track_) -> dict[int, tuple]:
+    return {int(f): tuple(b) for f, b in zip(track_.frames, track_.boxes)}
+
+
+def test_robust_beats_paper_on_a_short_video(short_video) -> None:
+    graphs, truth = short_video
 
     def best_scores(method: str) -> list[float]:
-        tracks = track(graphs, TrapParams(**{**base.as_dict(), "method": method})).tracks
+        tracks = track(graphs, TrapParams(**{**_BASE.as_dict(), "method": method})).tracks
         scores = []
         for gt in truth:
-            pr = [box_precision_recall({int(f): tuple(b) for f, b in zip(t.frames, t.boxes)}, gt) for t in tracks]
+            pr = [box_precision_recall(_boxes(t), gt) for t in tracks]
             scores.append(max((p * r for p, r in pr), default=0.0))
         return scores
 
     robust, paper = best_scores("robust"), best_scores("paper")
     assert sum(robust) > sum(paper)
     assert min(robust[:2]) > 0.5
+
+
+def test_mining_in_windows_keeps_the_tracks(short_video) -> None:
+    graphs, _ = short_video
+    whole = track(graphs, TrapParams(**{**_BASE.as_dict(), "window": 0}))
+    windowed = track(graphs, TrapParams(**{**_BASE.as_dict(), "window": 80}))  # 4 windows
+    assert len(windowed.tracks) == len(whole.tracks) > 0
+    for reference in whole.tracks:
+        scores = [box_precision_recall(_boxes(t), _boxes(reference)) for t in windowed.tracks]
+        assert max(p * r for p, r in scores) > 0.9

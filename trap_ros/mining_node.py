@@ -1,5 +1,5 @@
-"""Mining node: accumulates plane graphs; at the end of the bag mines, clusters, selects and
-publishes ``detections`` (one ``vision_msgs/Detection2DArray`` per frame, header = that frame's
+"""Mining node: accumulates plane graphs and mines them window by window as they come; at the end
+of the bag stitches the windows, clusters, selects and publishes ``detections`` (one ``vision_msgs/Detection2DArray`` per frame, header = that frame's
 image header), ``tracks`` (one Detection2DArray per track, latched) and ``trajectories``
 (``visualization_msgs/MarkerArray``). Acknowledges every graph on ``progress`` (the bag
 reader's flow control).
@@ -16,7 +16,7 @@ from std_msgs.msg import Header, UInt64
 from vision_msgs.msg import Detection2DArray
 from visualization_msgs.msg import MarkerArray
 
-from trap_core.pipeline import GRAPH_STAGE, TrackingResult, TrapParams, frame_rate, track
+from trap_core.pipeline import GRAPH_STAGE, PatternMiner, TrackingResult, TrapParams, frame_rate, track
 from trap_core.rag import PlaneGraph
 from trap_ros.messages import frame_detections, message_graph, track_arrays, trajectory_markers
 from trap_ros.node_main import run_node
@@ -35,6 +35,7 @@ class MiningNode(Node):
         declare_trap_parameters(self, MINING_STAGE)
         self.params = trap_parameters(self, MINING_STAGE)
         self.graphs: list[PlaneGraph] = []
+        self.miner = PatternMiner(self.params)
         self.headers: list[Header] = []
         self.expected: int | None = None
         self.on_done = on_done
@@ -53,9 +54,12 @@ class MiningNode(Node):
 
     def _on_graph(self, message: CompressedImage) -> None:
         graph = message_graph(message)
-        with self._lock:
+        with self._lock:  # windows are mined here, while later frames are being segmented
+            if self._started:
+                return
             self.graphs.append(graph)
             self.headers.append(message.header)
+            self.miner.add(graph)
             count = len(self.graphs)
         self.progress_pub.publish(UInt64(data=count))
         self._maybe_finish()
@@ -91,7 +95,7 @@ class MiningNode(Node):
             if len(graphs) >= 2:
                 self.get_logger().info(f"tracking over {len(graphs)} frames")
                 stamps = [h.stamp.sec * 1_000_000_000 + h.stamp.nanosec for h in headers]
-                self.result = track(graphs, self.params, frame_rate(stamps))
+                self.result = track(graphs, self.params, frame_rate(stamps), self.miner)
                 published["detections"] = frame_detections(headers, self.result.tracks)
                 published["tracks"] = track_arrays(headers, self.result.tracks)
                 published["trajectories"] = [trajectory_markers(headers[0], self.result.tracks)]

@@ -51,10 +51,11 @@ class Trajectories:
         return Trajectories.pack([frames[0] for frames, _ in samples], pieces)
 
 
-def trajectories(result: MiningResult) -> Trajectories:
-    """Build the trajectory of every spatio-temporal pattern of ``result``."""
+def trajectories(result: MiningResult, patterns: np.ndarray | None = None) -> Trajectories:
+    """Build the trajectory of each spatio-temporal pattern of ``result`` (of ``patterns`` only,
+    in that order, when given)."""
     samples = []
-    for s in range(result.n_st):
+    for s in (range(result.n_st) if patterns is None else patterns):
         rows = result.st(s)
         known, inverse = np.unique(result.occ_frame[rows], return_inverse=True)
         counts = np.bincount(inverse)

@@ -5,5 +5,6 @@ from trap_core.mining.errors import MiningError
 from trap_core.mining.miner import mine
 from trap_core.mining.params import LINKINGS, MiningParams
 from trap_core.mining.result import MiningResult
+from trap_core.mining.windows import WindowedMiner
 
-__all__ = ["LINKINGS", "MiningError", "MiningParams", "MiningResult", "mine", "mine_auto"]
+__all__ = ["LINKINGS", "MiningError", "MiningParams", "MiningResult", "WindowedMiner", "mine", "mine_auto"]

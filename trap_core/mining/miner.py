@@ -43,7 +43,7 @@ def _frequent(per_frame_hashes: list[np.ndarray], minimum: int) -> tuple[np.ndar
 
 
 def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 0,
-         on_frame: Callable[[int], None] | None = None) -> MiningResult:
+         on_frame: Callable[[int], None] | None = None, open_ends: tuple[int, int] = (0, 0)) -> MiningResult:
     """Mine the spatio-temporal patterns of consecutive frames' plane graphs.
 
     Parameters
@@ -54,6 +54,10 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
         ``eps``, ``tau``, ``freq_min``, ``freq_st_min``, ``max_faces``.
     on_frame : callable, optional
         Called with the number of frames enumerated so far (progress).
+    open_ends : (int, int)
+        Components with an occurrence in the first ``open_ends[0]`` or the last
+        ``open_ends[1]`` frames are kept whatever their ``freq_st``: they may continue in a
+        neighbouring window (:mod:`trap_core.mining.windows`).
 
     Returns
     -------
@@ -99,27 +103,34 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
     starts = np.searchsorted(pattern[order], np.arange(pattern_hash.size + 1))
     link = assign_occurrences if params.linking == "assignment" else link_occurrences
     component = link(starts, frames[order], position[order], float(params.eps), int(params.tau))
+    open_after = len(graphs) - open_ends[1] if open_ends[1] > 0 else len(graphs)
     st_pattern, st_offsets, st_rows = _components(component, pattern[order], frames[order], order,
-                                                  params.freq_st_min)
+                                                  params.freq_st_min, (open_ends[0], open_after))
     pattern_faces = np.zeros(pattern_hash.size, dtype=np.int64)
     pattern_faces[pattern] = (occ_faces >= 0).sum(axis=1)
     # Keep only the occurrences of kept spatio-temporal patterns.
     used = np.unique(st_rows)
-    return MiningResult(pattern_hash, pattern_frequency, pattern_faces, frames[used] + first_frame, pattern[used],
-                        position[used], box[used], node_box[used], occ_faces[used], st_pattern, st_offsets,
-                        np.searchsorted(used, st_rows))
+    return MiningResult(pattern_hash, pattern_frequency, pattern_faces, (frames[used] + first_frame).astype(np.int32),
+                        pattern[used].astype(np.int32), position[used].astype(np.float32), box[used],
+                        node_box[used], occ_faces[used], st_pattern, st_offsets,
+                        np.searchsorted(used, st_rows).astype(np.int32))
 
 
 def _components(component: np.ndarray, pattern: np.ndarray, frames: np.ndarray, rows: np.ndarray,
-                freq_st_min: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Group sorted occurrences by component root; keep components spanning enough frames."""
+                freq_st_min: int, open_frames: tuple[int, int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Group sorted occurrences by component root; keep components spanning enough frames, or
+    reaching before ``open_frames[0]`` or from ``open_frames[1]`` on."""
+    if component.size == 0:
+        return np.empty(0, np.int64), np.zeros(1, np.int64), np.empty(0, np.int64)
     order = np.lexsort((frames, component))
     root = component[order]
     bounds = np.flatnonzero(np.r_[True, root[1:] != root[:-1], True])
-    distinct = np.r_[True, (root[1:] != root[:-1]) | (frames[order][1:] != frames[order][:-1])]
-    frames_per = np.add.reduceat(distinct.astype(np.int64), bounds[:-1]) if root.size else np.empty(0, np.int64)
-    keep = np.flatnonzero(frames_per >= freq_st_min)
-    sizes = bounds[keep + 1] - bounds[keep]
-    offsets = np.r_[0, np.cumsum(sizes)].astype(np.int64)
-    picked = np.concatenate([order[bounds[k]:bounds[k + 1]] for k in keep]) if keep.size else np.empty(0, np.int64)
-    return pattern[order[bounds[keep]]] if keep.size else np.empty(0, np.int64), offsets, rows[picked]
+    sorted_frames = frames[order]
+    distinct = np.r_[True, (root[1:] != root[:-1]) | (sorted_frames[1:] != sorted_frames[:-1])]
+    frames_per = np.add.reduceat(distinct.astype(np.int64), bounds[:-1])
+    reaches_open_end = (sorted_frames[bounds[:-1]] < open_frames[0]) | (sorted_frames[bounds[1:] - 1] >= open_frames[1])
+    kept = (frames_per >= freq_st_min) | reaches_open_end
+    keep = np.flatnonzero(kept)
+    offsets = np.r_[0, np.cumsum(bounds[keep + 1] - bounds[keep])].astype(np.int64)
+    picked = order[np.repeat(kept, np.diff(bounds))]
+    return pattern[order[bounds[keep]]], offsets, rows[picked]

@@ -10,6 +10,8 @@ import numpy as np
 class MiningResult:
     """Frequent plane patterns, their kept occurrences, and the spatio-temporal patterns.
 
+    The per-occurrence arrays are 32-bit: a long video has millions of occurrences.
+
     Occurrence ``r`` is the face set ``occ_faces[r]`` (graph face ids, -1 padded) of frame
     ``occ_frame[r]``, an occurrence of plane pattern ``occ_pattern[r]``. Spatio-temporal
     pattern ``s`` is the rows ``st_rows[st_offsets[s]:st_offsets[s + 1]]`` (sorted by frame).
@@ -18,15 +20,15 @@ class MiningResult:
     pattern_hash: np.ndarray       # (P,) int64 hash of each plane pattern's canonical code
     pattern_frequency: np.ndarray  # (P,) freq(P): frames with an occurrence
     pattern_faces: np.ndarray      # (P,) faces per pattern
-    occ_frame: np.ndarray          # (N,) int64
-    occ_pattern: np.ndarray        # (N,) int64
-    occ_position: np.ndarray       # (N, 2) mean barycentre of the occurrence's nodes
+    occ_frame: np.ndarray          # (N,) int32
+    occ_pattern: np.ndarray        # (N,) int32
+    occ_position: np.ndarray       # (N, 2) float32 mean barycentre of the occurrence's nodes
     occ_box: np.ndarray            # (N, 4) float32 x0, y0, x1, y1 of its regions' pixels (inclusive)
     occ_node_box: np.ndarray       # (N, 4) float32 extent of its nodes' barycentres
     occ_faces: np.ndarray          # (N, max_faces) int32 face ids in the frame's graph, -1 padded
     st_pattern: np.ndarray         # (S,) plane pattern of each spatio-temporal pattern
     st_offsets: np.ndarray         # (S+1,)
-    st_rows: np.ndarray            # occurrence rows of all spatio-temporal patterns
+    st_rows: np.ndarray            # int32 occurrence rows of all spatio-temporal patterns
 
     @property
     def n_patterns(self) -> int:
@@ -53,7 +55,7 @@ class MiningResult:
         and ``freq_st >= min_freq_st`` (mining is exact, so this equals mining again with them)."""
         keep = (self.pattern_frequency[self.st_pattern] >= min_freq) & (self.freq_st() >= min_freq_st)
         sizes = np.diff(self.st_offsets)[keep]
-        rows = np.concatenate([self.st(s) for s in np.flatnonzero(keep)]) if keep.any() else np.empty(0, np.int64)
+        rows = self.st_rows[np.repeat(keep, np.diff(self.st_offsets))]
         return MiningResult(self.pattern_hash, self.pattern_frequency, self.pattern_faces, self.occ_frame,
                             self.occ_pattern, self.occ_position, self.occ_box, self.occ_node_box, self.occ_faces,
                             self.st_pattern[keep], np.r_[0, np.cumsum(sizes)].astype(np.int64), rows)

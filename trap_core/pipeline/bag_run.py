@@ -13,6 +13,7 @@ from trap_core.bagio import open_image_stream
 from trap_core.outputs import Thumbnails, contact_sheet, write_tracks_mot
 from trap_core.pipeline.frames_to_graphs import graphs_of
 from trap_core.pipeline.params import TrapParams
+from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.pipeline.tracking import TrackingResult, frame_rate, track
 from trap_core.progress import Progress
 from trap_core.rag import PlaneGraph
@@ -54,16 +55,18 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
     with open_image_stream(bag, topic) as stream:
         meter = Progress(stream.count, f"segmenting {stream.topic}")
         thumbnails = Thumbnails(stream.count)
+        miner = PatternMiner(params, stream.count)
         start = time.perf_counter()
         try:
             for graph in graphs_of(stamped_frames(stream, thumbnails, meter, stamps), params):
                 graphs.append(graph)
+                miner.add(graph)
         except KeyboardInterrupt:
             interrupted = True
         meter.finish()
         seconds["read_segment_graph"] = time.perf_counter() - start
         chosen_topic = stream.topic
-    result = track(graphs, params, frame_rate(stamps[:len(graphs)])) if len(graphs) >= 2 else None
+    result = track(graphs, params, frame_rate(stamps[:len(graphs)]), miner) if len(graphs) >= 2 else None
     if result is not None:
         seconds.update(result.seconds)
     run = BagRun(chosen_topic, len(graphs), graphs, result, seconds, {}, interrupted)

@@ -45,6 +45,9 @@ class TrapParams:
                                      "(the paper's rule of thumb)")
     freq_min: float = _p(0.0, "minimum frames holding a pattern: 0 = freq_st_min (paper), < 1 share, >= 1 frames")
     max_faces: int = _p(3, "largest pattern, in faces")
+    window: int = _p(1500, "frames mined at once: longer videos are mined in windows overlapping by tau frames and "
+                           "stitched, memory bounded (ours); shares in freq_st_min/freq_min are of the window; "
+                           "0 = the whole video at once (paper)")
     method: str = _p("robust", "paper (TRAP as published) or robust (ours: README 'Method')")
     one_path: bool = _p(True, "robust: link each pattern's occurrences one to one (one object, one path)")
     min_speed: float = _p(0.04, "robust: image widths per second, relative to the camera, below which patterns "
@@ -73,6 +76,7 @@ class TrapParams:
             (self.eps > 0 and self.tau >= 1, "eps must be > 0 and tau >= 1"),
             (self.freq_st_min > 0 and self.freq_min >= 0, "freq_st_min must be > 0 and freq_min >= 0"),
             (1 <= self.max_faces <= 8, "max_faces must be within 1..8"),
+            (self.window == 0 or self.window > 2 * self.tau, "window must be 0 (whole video) or more than 2 x tau"),
             (0 <= self.ignore_top < 1 and 0 <= self.length_tolerance <= 1,
              "ignore_top must be within [0, 1) and length_tolerance within [0, 1]"),
             (self.n_objects >= 0 and 0 <= self.min_track_length <= 1, "n_objects >= 0, min_track_length within [0, 1]"),

@@ -9,8 +9,9 @@ import numpy as np
 
 from trap_core.clustering import (ClusterSummary, Hierarchy, Track, Trajectories, build_track, cluster_patterns,
                                   pattern_distances, select_clusters, summarise, trajectories)
-from trap_core.mining import MiningResult, mine, mine_auto
+from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
+from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
 from trap_core.robust import camera_transforms, observed_paths, rejoin_fragments, world_speed
 
@@ -20,7 +21,8 @@ class TrackingResult:
     """Everything a run produced, for outputs, evaluation and pictures."""
 
     mining: MiningResult
-    trajectories: Trajectories
+    trajectories: Trajectories  # of the clustered patterns (hierarchy leaves), in the order of ``clustered``
+    clustered: np.ndarray       # spatio-temporal patterns that were clustered
     hierarchy: Hierarchy
     summary: ClusterSummary
     selected: list[int]
@@ -36,8 +38,12 @@ def frame_rate(stamps_ns: Sequence[int], default: float = 25.0) -> float:
     return (len(stamps_ns) - 1) * 1e9 / (stamps_ns[-1] - stamps_ns[0])
 
 
-def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0) -> TrackingResult:
+def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
+          miner: PatternMiner | None = None) -> TrackingResult:
     """Run TRAP's stages 3-7 on the plane graphs of a whole video (frame i = graphs[i]).
+
+    ``miner``: a :class:`PatternMiner` that was given every graph as it was made (mining
+    then overlaps segmentation); by default the graphs are mined here.
 
     ``method="paper"``: every spatio-temporal pattern is clustered. ``"robust"`` (ours): one path
     per object when linking occurrences, only patterns that move relative to the camera's
@@ -47,14 +53,13 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0) -
     seconds: dict[str, float] = {}
     n_frames = len(graphs)
     robust = params.method == "robust"
+    if miner is None:
+        miner = PatternMiner(params, n_frames)
+        for graph in graphs:
+            miner.add(graph)
+    mined = miner.finish()
+    seconds["mining"] = miner.seconds
     start = time.perf_counter()
-    if params.auto_frequency:
-        mined, _ = mine_auto(graphs, params.mining(n_frames))
-    else:
-        mined = mine(graphs, params.mining(n_frames))
-    seconds["mining"] = time.perf_counter() - start
-    start = time.perf_counter()
-    paths = trajectories(mined)
     clustered = np.arange(mined.n_st)
     if robust and params.min_speed > 0:
         observed = observed_paths(mined)
@@ -63,7 +68,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0) -
         clustered = np.flatnonzero(speed >= params.min_speed * width / fps)
     seconds["camera"] = time.perf_counter() - start
     start = time.perf_counter()
-    sub_paths = paths.subset(clustered)
+    sub_paths = trajectories(mined, clustered)
     distances = pattern_distances(sub_paths)
     seconds["distances"] = time.perf_counter() - start
     start = time.perf_counter()
@@ -81,4 +86,4 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0) -
     tracks = [build_track(mined, all_labels, cluster, track_id, graphs, params.core_share if robust else 0.0)
               for track_id, cluster in enumerate(selected, start=1)]
     seconds["clustering"] = time.perf_counter() - start
-    return TrackingResult(mined, paths, hierarchy, summary, selected, tracks, all_labels, seconds)
+    return TrackingResult(mined, sub_paths, clustered, hierarchy, summary, selected, tracks, all_labels, seconds)

@@ -23,16 +23,16 @@ class PlaneGraph:
     """
 
     n_nodes: int
-    centroid: np.ndarray      # (n, 2) float: barycentre x, y
-    area: np.ndarray          # (n,) int: pixels
-    bbox: np.ndarray          # (n, 4) int: x0, y0, x1, y1 inclusive
-    colour: np.ndarray        # (n, 3) float: mean RGB
-    label: np.ndarray         # (n,) int: discretised mean colour
-    he_origin: np.ndarray     # (2m,) int
-    he_twin: np.ndarray       # (2m,) int
-    he_next: np.ndarray       # (2m,) int
-    he_length: np.ndarray     # (2m,) int: contact length in pixel edges
-    face_of: np.ndarray       # (2m,) int: face on the left... of each half-edge's traversal
+    centroid: np.ndarray      # (n, 2) float32: barycentre x, y
+    area: np.ndarray          # (n,) int32: pixels
+    bbox: np.ndarray          # (n, 4) int32: x0, y0, x1, y1 inclusive
+    colour: np.ndarray        # (n, 3) float32: mean RGB
+    label: np.ndarray         # (n,) int32: discretised mean colour
+    he_origin: np.ndarray     # (2m,) int32
+    he_twin: np.ndarray       # (2m,) int32
+    he_next: np.ndarray       # (2m,) int32
+    he_length: np.ndarray     # (2m,) int32: contact length in pixel edges
+    face_of: np.ndarray       # (2m,) int32: face on the left... of each half-edge's traversal
     face_half_edges: np.ndarray  # half-edges of all faces, in traversal order
     face_offsets: np.ndarray  # (F+1,) CSR offsets into face_half_edges
 
@@ -135,5 +135,11 @@ def build_plane_graph(labels: np.ndarray, n_regions: int, rgb: np.ndarray, colou
         right, twin, rot_next, length = drop_short_contacts(right, twin, rot_next, length, face_of, area, n_regions,
                                                             float(contact_tolerance))
         face_of, face_half_edges, face_offsets = trace_faces(rot_next, twin)
-    return PlaneGraph(n_regions, centroid, area, box, colour, colour_label(colour, colour_bins),
-                      right, twin, rot_next, length, face_of, face_half_edges, face_offsets)
+    return PlaneGraph(n_regions, *_compact(centroid, area, box, colour, colour_label(colour, colour_bins), right,
+                                           twin, rot_next, length, face_of, face_half_edges, face_offsets))
+
+
+def _compact(*arrays: np.ndarray) -> list[np.ndarray]:
+    """32-bit copies of the graph's arrays: a video's graphs are kept until its tracks are built,
+    and half the bytes is half the memory (issue #7); every count and pixel coordinate fits."""
+    return [a.astype(np.float32 if a.dtype.kind == "f" else np.int32) for a in arrays]

@@ -1,8 +1,8 @@
 """Lossless byte encoding of a :class:`PlaneGraph`, for passing graphs between ROS nodes.
 
-Layout (little-endian): the 8-byte magic ``TRAPPG01``, then the node count and the sizes of
+Layout (little-endian): the 8-byte magic ``TRAPPG02``, then the node count and the sizes of
 the half-edge and face arrays as three uint64, then the arrays in field order, each as raw
-float64 or int64. ``graph_from_bytes(graph_to_bytes(g))`` equals ``g`` field for field.
+float32 or int32 (the graph's own types). ``graph_from_bytes(graph_to_bytes(g))`` equals ``g`` field for field.
 """
 from __future__ import annotations
 
@@ -11,15 +11,15 @@ import numpy as np
 from trap_core.rag.errors import GraphError
 from trap_core.rag.plane_graph import PlaneGraph
 
-MAGIC = b"TRAPPG01"
+MAGIC = b"TRAPPG02"
 # (field, dtype, shape given n nodes / h half-edges / f faces)
 _FIELDS = (
-    ("centroid", "<f8", lambda n, h, f: (n, 2)), ("area", "<i8", lambda n, h, f: (n,)),
-    ("bbox", "<i8", lambda n, h, f: (n, 4)), ("colour", "<f8", lambda n, h, f: (n, 3)),
-    ("label", "<i8", lambda n, h, f: (n,)), ("he_origin", "<i8", lambda n, h, f: (h,)),
-    ("he_twin", "<i8", lambda n, h, f: (h,)), ("he_next", "<i8", lambda n, h, f: (h,)),
-    ("he_length", "<i8", lambda n, h, f: (h,)), ("face_of", "<i8", lambda n, h, f: (h,)),
-    ("face_half_edges", "<i8", lambda n, h, f: (h,)), ("face_offsets", "<i8", lambda n, h, f: (f + 1,)),
+    ("centroid", "<f4", lambda n, h, f: (n, 2)), ("area", "<i4", lambda n, h, f: (n,)),
+    ("bbox", "<i4", lambda n, h, f: (n, 4)), ("colour", "<f4", lambda n, h, f: (n, 3)),
+    ("label", "<i4", lambda n, h, f: (n,)), ("he_origin", "<i4", lambda n, h, f: (h,)),
+    ("he_twin", "<i4", lambda n, h, f: (h,)), ("he_next", "<i4", lambda n, h, f: (h,)),
+    ("he_length", "<i4", lambda n, h, f: (h,)), ("face_of", "<i4", lambda n, h, f: (h,)),
+    ("face_half_edges", "<i4", lambda n, h, f: (h,)), ("face_offsets", "<i4", lambda n, h, f: (f + 1,)),
 )
 
 
@@ -42,7 +42,7 @@ def graph_from_bytes(data: bytes | bytearray | memoryview | np.ndarray) -> Plane
     arrays = {}
     for name, dtype, shape_of in _FIELDS:
         shape = shape_of(n, h, f)
-        size = int(np.prod(shape)) * 8
+        size = int(np.prod(shape)) * np.dtype(dtype).itemsize
         if offset + size > len(buffer):
             raise GraphError(f"plane graph buffer truncated in {name}")
         arrays[name] = np.frombuffer(buffer[offset:offset + size], dtype=dtype).reshape(shape).astype(dtype[1:])

@@ -65,17 +65,24 @@ def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:
 
 def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int) -> np.ndarray:
     """(S,) median speed of each pattern in world coordinates, pixels per frame (0 if seen once)."""
-    inverse = np.linalg.inv(transforms)[paths.frame]
-    homogeneous = np.column_stack([paths.position, np.ones(len(paths.frame))])
-    world = np.einsum("kij,kj->ki", inverse, homogeneous)[:, :2]
+    inverse = np.linalg.inv(transforms)
+    world = np.empty((len(paths.frame), 2))
+    for axis in (0, 1):  # row ``axis`` of each observation's inverse transform, one coefficient at a time
+        world[:, axis] = inverse[paths.frame, axis, 2]
+        world[:, axis] += inverse[paths.frame, axis, 0] * paths.position[:, 0]
+        world[:, axis] += inverse[paths.frame, axis, 1] * paths.position[:, 1]
     same = paths.pattern[1:] == paths.pattern[:-1]
     rate = np.linalg.norm(np.diff(world, axis=0), axis=1) / np.maximum(np.diff(paths.frame), 1)
     owner, rate = paths.pattern[1:][same], rate[same]
     speed = np.zeros(n_patterns)
     if owner.size:
-        order = np.lexsort((rate, owner))
+        # sort by owner, then rate: the integer part of the key is the owner (one argsort of
+        # floats is several times faster than a two-key lexsort over millions of steps)
+        order = np.argsort(owner + rate / (rate.max() + 1.0))
         owner, rate = owner[order], rate[order]
         bounds = np.searchsorted(owner, np.arange(n_patterns + 1))
-        for s in np.flatnonzero(np.diff(bounds)):
-            speed[s] = np.median(rate[bounds[s]:bounds[s + 1]])
+        count = np.diff(bounds)
+        seen = np.flatnonzero(count)
+        low, high = bounds[seen] + (count[seen] - 1) // 2, bounds[seen] + count[seen] // 2
+        speed[seen] = 0.5 * (rate[low] + rate[high])
     return speed

@@ -105,6 +105,19 @@ def test_selection_longest_then_most_patterns_then_occurrences() -> None:
     assert select_clusters(summary, 100, separation=5.0) == [0, 1]
 
 
+def test_selection_rejects_a_chain_of_fragments_on_kept_objects() -> None:
+    """Cluster 2 follows object 0 for 40 frames, then object 1 for 40 frames: its mean distance to
+    each is large (it is far from each half the time), but in every frame it is on a kept one."""
+    a, b = np.zeros((100, 2)), np.full((100, 2), 300.0)
+    chain = np.r_[np.zeros((40, 2)), np.full((20, 2), 150.0), np.full((40, 2), 300.0)]
+    paths = _paths([(0, a), (0, b), (0, chain[:40]), (60, chain[60:])])
+    summary = summarise(np.array([0, 1, 2, 2]), paths, np.ones(4), 100)
+    assert select_clusters(summary, 100, min_length=0.3) == [0, 1]
+    alone = _paths([(0, a), (0, np.full((80, 2), 150.0))])  # far from the kept one all along
+    summary = summarise(np.array([0, 1]), alone, np.ones(2), 100)
+    assert select_clusters(summary, 100, min_length=0.3) == [0, 1]
+
+
 def test_track_boxes_and_scores() -> None:
     frames = np.array([0, 0, 1])
     boxes = np.array([[10, 10, 19, 19], [15, 5, 30, 12], [0, 0, 4, 4]], dtype=float)

@@ -8,7 +8,7 @@ from trap_core.clustering import Trajectories
 from trap_core.evaluation import box_precision_recall
 from trap_core.mining._kernels import assign_occurrences, link_occurrences
 from trap_core.pipeline import TrapParams, frame_graph, track
-from trap_core.robust import ObservedPaths, camera_transforms, rejoin_fragments, world_speed
+from trap_core.robust import ObservedPaths, camera_transforms, rejoin_fragments, steady_boxes, world_speed
 from trap_core.synthetic import PRESETS, SceneConfig, render
 
 
@@ -69,6 +69,51 @@ def test_rejoin_joins_same_structure_across_a_gap_but_not_overlapping_lookalikes
     assert labels[0] == labels[1] != labels[2]
     different = rejoin_fragments(np.array([0, 1, 2]), paths, np.array([5, 6, 7]), 100)
     assert np.unique(different).size == 3
+
+
+def test_rejoin_follows_the_way_an_object_went() -> None:
+    """A fragment that left through the border continues one that enters through it, not one
+    that vanished inside the view, even if the latter predicts it better."""
+    line = lambda n, x0, dx: np.column_stack([x0 + dx * np.arange(n), np.full(n, 100.0)])  # noqa: E731
+    paths = _paths([(0, line(55, 455, 3)),     # leaves at the right border after frame 54
+                    (50, line(40, 480, 3)),    # vanishes inside the view after frame 89
+                    (100, line(40, 630, -3))])  # enters from the right border at frame 100
+    pattern = np.array([5, 5, 5])
+    plain = rejoin_fragments(np.array([0, 1, 2]), paths, pattern, 140, max_overlap=0)
+    assert plain[1] == plain[2] != plain[0]  # the better prediction wins without border contacts
+    starts_at_border, ends_at_border = np.array([False, False, True]), np.array([True, False, False])
+    labels = rejoin_fragments(np.array([0, 1, 2]), paths, pattern, 140, max_overlap=0,
+                              at_border=(starts_at_border, ends_at_border))
+    assert labels[0] == labels[2] != labels[1]
+
+
+def test_border_contacts_of_first_and_last_boxes() -> None:
+    from trap_core.mining import MiningResult
+    from trap_core.robust import border_contacts
+    box = np.array([[600, 100, 639, 140],   # pattern 0 starts at the right border...
+                    [300, 100, 340, 140],   # ...and ends inside
+                    [100, 5, 140, 45],      # pattern 1 starts 5 px from the top (40 px box: within 25 %)
+                    [100, 30, 140, 70]], dtype=np.float32)  # ...and ends 30 px from it
+    empty = np.zeros(4)
+    result = MiningResult(empty, empty, empty, np.arange(4), np.zeros(4, int), np.zeros((4, 2)), box, box,
+                          np.zeros((4, 3), int), np.array([0, 0]), np.array([0, 2, 4]), np.arange(4))
+    starts, ends = border_contacts(result, np.array([0, 1]), 640, 480)
+    assert starts.tolist() == [True, True] and ends.tolist() == [False, False]
+
+
+def test_steady_boxes_shrink_a_merged_box_to_the_usual_size_on_the_path() -> None:
+    frames = np.arange(60)
+    boxes = np.column_stack([2.0 * frames, np.full(60, 50.0), np.full(60, 40.0), np.full(60, 30.0)])
+    merged = (frames >= 20) & (frames < 30)  # touching a look-alike on its right: twice as wide
+    boxes[merged, 2] = 90.0
+    fixed = steady_boxes(frames, boxes, factor=1.5, window=50)
+    np.testing.assert_allclose(fixed[~merged], boxes[~merged])
+    np.testing.assert_allclose(fixed[merged, 2:], [[40.0, 30.0]] * 10)
+    np.testing.assert_allclose(fixed[merged, 0], 2.0 * frames[merged])  # where the object is
+    growing = boxes.copy()
+    growing[:, 2:] *= np.linspace(1, 3, 60)[:, None]  # steadily coming closer: left alone
+    np.testing.assert_allclose(steady_boxes(frames, growing, factor=1.5, window=5), growing)
+    np.testing.assert_allclose(steady_boxes(frames, boxes, factor=0.0), boxes)
 
 
 _BASE = TrapParams(segmentation="colour", eps=20.0, tau=25)

@@ -5,7 +5,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from trap_core.clustering._kernels import pairwise_distance
 from trap_core.clustering.trajectory import Trajectories
 
 
@@ -60,9 +59,11 @@ def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | Non
 
     With ``n_objects``: the ``n_objects`` longest clusters, one after another (the paper).
     Without (ours, unsupervised): keep taking the next longest cluster while it covers at
-    least ``min_length`` of the video, skipping any cluster whose mean path comes within
-    ``separation`` pixels (the pattern distance of TRAP_SPEC section 5) of one already kept:
-    "the longest clusters that are far enough from each other".
+    least ``min_length`` of the video, skipping any cluster that is, in most of the frames it
+    covers, within ``separation`` pixels of a cluster already kept: "the longest clusters that
+    are far enough from each other". Counting frames against every kept cluster (not a mean
+    distance to each) also rejects a chain of fragments that follows one object, then
+    another.
     """
     remaining = np.arange(summary.length.size)
     chosen: list[int] = []
@@ -73,14 +74,21 @@ def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | Non
         if n_objects is None:
             if summary.length[best] < min_length * n_frames:
                 break
-            if chosen and _closest(summary.paths, best, chosen) <= separation:
+            if chosen and _share_near(summary, best, chosen, separation) > 0.5:
                 continue
         chosen.append(best)
     return chosen
 
 
-def _closest(paths: Trajectories, cluster: int, others: list[int]) -> float:
-    """Smallest pattern distance between the mean path of ``cluster`` and those of ``others``."""
-    sub = paths.subset(np.array([cluster, *others]))
-    condensed = pairwise_distance(sub.start, sub.end, sub.offsets, sub.points)
-    return float(condensed[: len(others)].min())
+def _share_near(summary: ClusterSummary, cluster: int, others: list[int], separation: float) -> float:
+    """Share of the frames ``cluster`` covers where its mean position is within ``separation``
+    pixels of the mean position of one of ``others`` covering that frame."""
+    frames = np.flatnonzero(summary.covered[cluster])
+    paths = summary.paths
+    here = paths.of(cluster)[frames - paths.start[cluster]]
+    near = np.zeros(frames.size, dtype=bool)
+    for other in others:
+        both = summary.covered[other, frames]
+        there = paths.of(other)[frames[both] - paths.start[other]]
+        near[both] |= np.linalg.norm(here[both] - there, axis=1) <= separation
+    return float(near.mean()) if frames.size else 0.0

@@ -55,6 +55,8 @@ class TrapParams:
     rejoin: bool = _p(True, "robust: rejoin fragments of one object across occlusions and exits")
     rejoin_similarity: float = _p(0.3, "robust: Jaccard similarity of structures needed to rejoin fragments")
     core_share: float = _p(0.8, "robust: track box from regions in at least this share of the occurrences; 0 = all")
+    size_jump: float = _p(1.5, "robust: a track box this many times wider or taller than its running median (2 tau "
+                               "frames each side) holds more than the object: it is given the usual size; 0 = off")
     linkage: str = _p("average", "hierarchical clustering linkage: average, single, complete, weighted (ours)")
     ignore_top: float = _p(0.1, "share of the top levels of the hierarchy the lifetime cut ignores")
     n_objects: int = _p(0, "objects to track; 0 = found without supervision (ours)")
@@ -81,6 +83,7 @@ class TrapParams:
              "ignore_top must be within [0, 1) and length_tolerance within [0, 1]"),
             (self.n_objects >= 0 and 0 <= self.min_track_length <= 1, "n_objects >= 0, min_track_length within [0, 1]"),
             (self.separation >= 0 and 1 <= self.threads <= 64, "separation >= 0 and threads within 1..64"),
+            (self.size_jump == 0 or self.size_jump > 1, "size_jump must be 0 (off) or more than 1"),
             (self.min_speed >= 0 and 0 <= self.rejoin_similarity <= 1 and 0 <= self.core_share <= 1,
              "min_speed >= 0, rejoin_similarity and core_share within [0, 1]"),
         ]

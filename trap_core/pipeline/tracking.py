@@ -1,6 +1,7 @@
 """From plane graphs to tracks: mining, trajectories, clustering, lifetime cut, selection."""
 from __future__ import annotations
 
+import dataclasses
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -13,7 +14,7 @@ from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
-from trap_core.robust import camera_transforms, observed_paths, rejoin_fragments, world_speed
+from trap_core.robust import border_contacts, camera_transforms, steady_boxes, observed_paths, rejoin_fragments, world_speed
 
 
 @dataclass
@@ -52,6 +53,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     """
     seconds: dict[str, float] = {}
     n_frames = len(graphs)
+    width, height = (float(graphs[0].bbox[:, axis].max() + 1) for axis in (2, 3))  # regions tile the frame
     robust = params.method == "robust"
     if miner is None:
         miner = PatternMiner(params, n_frames)
@@ -64,7 +66,6 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     if robust and params.min_speed > 0:
         observed = observed_paths(mined)
         speed = world_speed(observed, camera_transforms(observed, n_frames), mined.n_st)
-        width = float(graphs[0].bbox[:, 2].max() + 1)
         clustered = np.flatnonzero(speed >= params.min_speed * width / fps)
     seconds["camera"] = time.perf_counter() - start
     start = time.perf_counter()
@@ -76,7 +77,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     labels = hierarchy.labels
     if robust and params.rejoin:
         labels = rejoin_fragments(labels, sub_paths, mined.st_pattern[clustered], n_frames,
-                                  params.rejoin_similarity, params.tau)
+                                  params.rejoin_similarity, params.tau,
+                                  border_contacts(mined, clustered, width, height))
     occurrences = np.diff(mined.st_offsets)[clustered]
     summary = summarise(labels, sub_paths, occurrences, n_frames)
     selected = select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
@@ -85,5 +87,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     all_labels[clustered] = labels
     tracks = [build_track(mined, all_labels, cluster, track_id, graphs, params.core_share if robust else 0.0)
               for track_id, cluster in enumerate(selected, start=1)]
+    if robust and params.size_jump:
+        tracks = [dataclasses.replace(t, boxes=steady_boxes(t.frames, t.boxes, params.size_jump, 2 * params.tau))
+                  for t in tracks]
     seconds["clustering"] = time.perf_counter() - start
     return TrackingResult(mined, sub_paths, clustered, hierarchy, summary, selected, tracks, all_labels, seconds)

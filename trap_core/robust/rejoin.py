@@ -7,22 +7,28 @@ not overlap in time (at most ``max_overlap`` shared frames), are made of the sam
 (Jaccard similarity of their plane patterns at least ``min_similarity``), and, among all such
 pairs, the later one starts closest to where the earlier one's motion predicts; pairs are
 joined greedily, closest first, and a joined cluster can no longer take a fragment that
-overlaps it, which keeps look-alike objects apart.
+overlaps it, which keeps look-alike objects apart. With the fragments' border contacts, a
+fragment that left the view (its last box at the image border) continues only one that
+enters it (first box at the border), and one that vanished inside the view (occluded)
+only one that appears inside it: an object comes back the way it went.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from trap_core.clustering import Trajectories, summarise
+from trap_core.mining import MiningResult
 
 
 def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.ndarray, n_frames: int,
-                     min_similarity: float = 0.3, max_overlap: int = 25) -> np.ndarray:
+                     min_similarity: float = 0.3, max_overlap: int = 25,
+                     at_border: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
     """Cluster labels (0..C'-1) after joining fragments of the same object.
 
     Candidate pairs and their costs are computed once on the fragments; they are then taken
     cheapest first, and a pair is joined only if the two groups it would unite (including
-    earlier joins) still share at most ``max_overlap`` frames.
+    earlier joins) still share at most ``max_overlap`` frames. ``at_border``: per pattern,
+    whether it starts and whether it ends at the image border (:func:`border_contacts`).
     """
     labels = np.unique(labels, return_inverse=True)[1]
     summary = summarise(labels, paths, np.ones(labels.size), n_frames)
@@ -37,8 +43,11 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     covered = summary.covered.astype(np.float32)
     overlap = covered @ covered.T
     start = summary.paths.start
-    earlier, later = np.nonzero((start[:, None] < start[None, :]) & (overlap <= max_overlap)
-                                & (similarity >= min_similarity))
+    candidate = (start[:, None] < start[None, :]) & (overlap <= max_overlap) & (similarity >= min_similarity)
+    if at_border is not None:
+        enters, leaves = (_cluster_ends(labels, paths, flags, first) for flags, first in zip(at_border, (True, False)))
+        candidate &= leaves[:, None] == enters[None, :]
+    earlier, later = np.nonzero(candidate)
     costs = np.array([_prediction_error(summary.paths, a, b) for a, b in zip(earlier, later)])
     group = np.arange(n_clusters)
     group_covered = summary.covered.copy()
@@ -59,3 +68,29 @@ def _prediction_error(paths: Trajectories, earlier: int, later: int) -> float:
     gap = paths.start[later] - paths.end[earlier]
     predicted = before[-1] + velocity * gap
     return float(np.linalg.norm(paths.of(later)[0] - predicted))
+
+
+def _cluster_ends(labels: np.ndarray, paths: Trajectories, flags: np.ndarray, first: bool) -> np.ndarray:
+    """Per cluster: ``flags`` of any of its patterns that starts (``first``) or ends where it does."""
+    n_clusters = int(labels.max()) + 1
+    ends = paths.start if first else paths.end
+    edge = np.full(n_clusters, np.iinfo(np.int64).max if first else -1, dtype=np.int64)
+    (np.minimum if first else np.maximum).at(edge, labels, ends)
+    out = np.zeros(n_clusters, dtype=bool)
+    at_edge = ends == edge[labels]
+    np.logical_or.at(out, labels[at_edge], flags[at_edge])
+    return out
+
+
+def border_contacts(result: MiningResult, patterns: np.ndarray, width: int, height: int,
+                    margin: float = 0.25) -> tuple[np.ndarray, np.ndarray]:
+    """Per spatio-temporal pattern of ``patterns``: whether its first and its last occurrence
+    boxes reach the image border, within ``margin`` times the box's own size (entering,
+    leaving the view)."""
+    def touches(rows: np.ndarray) -> np.ndarray:
+        box = result.occ_box[rows].astype(float)
+        mx, my = margin * (box[:, 2] - box[:, 0] + 1), margin * (box[:, 3] - box[:, 1] + 1)
+        return (box[:, 0] <= mx) | (box[:, 1] <= my) | (box[:, 2] >= width - 1 - mx) | (box[:, 3] >= height - 1 - my)
+    first = result.st_rows[result.st_offsets[patterns]]
+    last = result.st_rows[result.st_offsets[patterns + 1] - 1]
+    return touches(first), touches(last)

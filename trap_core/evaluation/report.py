@@ -167,7 +167,7 @@ def markdown(results: list[dict]) -> str:
         header = ["object", *baselines, "TRAP paper L (box)", "TRAP paper L (cluster)", "TRAP paper B (cluster)",
                   "TRAP robust (box)", "TRAP robust (cluster)"]
         lines += ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-        paper, robust = methods["paper"], methods["robust (+ core boxes)"]
+        paper, robust = methods["paper"], methods[STEPS[-1][0]]
         for o in range(res["objects"]):
             cells = [str(o + 1)]
             cells += [f"{_pct(b['objects'][o]['box_p'])}/{_pct(b['objects'][o]['box_r'])}" for b in baselines.values()]

@@ -53,6 +53,21 @@ def test_camera_transforms_recover_a_pan_and_speeds_separate_objects() -> None:
     assert speed[:n_background].max() < 0.01 and speed[n_background] == pytest.approx(2.0, abs=1e-3)
 
 
+def test_world_speed_over_a_lag_ignores_jitter_but_not_motion() -> None:
+    rng = np.random.default_rng(1)
+    frames = np.arange(100)
+    jitter = rng.normal(0, 2.0, size=(100, 2))  # a background region whose shape flickers with noise
+    walk = np.column_stack([2.0 * frames, np.zeros(100)]) + rng.normal(0, 0.5, size=(100, 2))
+    paths = ObservedPaths(np.repeat([0, 1], 100), np.r_[frames, frames], np.r_[100 + jitter, walk])
+    still = np.tile(np.eye(3), (100, 1, 1))
+    step = world_speed(paths, still, 2, lag=1)
+    over_lag = world_speed(paths, still, 2, lag=12)
+    assert step[0] > 1.0  # frame to frame, jitter looks like motion
+    assert over_lag[0] < 0.5 and over_lag[1] == pytest.approx(2.0, abs=0.1)
+    short = ObservedPaths(np.zeros(5, int), np.arange(5), np.column_stack([3.0 * np.arange(5), np.zeros(5)]))
+    assert world_speed(short, still[:5], 1, lag=12)[0] == pytest.approx(3.0)  # shorter than the lag: end to end
+
+
 def _paths(segments: list[tuple[int, np.ndarray]]) -> Trajectories:
     starts = np.array([s for s, _ in segments])
     ends = starts + np.array([len(p) for _, p in segments]) - 1
@@ -155,8 +170,8 @@ def test_robust_beats_paper_on_a_short_video(short_video) -> None:
 
 def test_mining_in_windows_keeps_the_tracks(short_video) -> None:
     graphs, _ = short_video
-    whole = track(graphs, TrapParams(**{**_BASE.as_dict(), "window": 0}))
-    windowed = track(graphs, TrapParams(**{**_BASE.as_dict(), "window": 80}))  # 4 windows
+    whole = track(graphs, TrapParams(**{**_BASE.as_dict(), "mining_window": 0}))
+    windowed = track(graphs, TrapParams(**{**_BASE.as_dict(), "mining_window": 80}))  # 4 windows
     assert len(windowed.tracks) == len(whole.tracks) > 0
     for reference in whole.tracks:
         scores = [box_precision_recall(_boxes(t), _boxes(reference)) for t in windowed.tracks]

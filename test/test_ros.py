@@ -95,6 +95,13 @@ def test_nodes_in_one_process_lose_no_frame_and_keep_headers(ros_bag: Path) -> N
         rclpy.shutdown(context=context)
 
 
+def test_node_parameter_names_do_not_collide() -> None:
+    """A parameter file applies to every node (``/**``): the reader's own parameters must not
+    share a name with a TRAP parameter, or one would silently set the other."""
+    from trap_ros.process_bag import READER_PARAMETERS
+    assert set(READER_PARAMETERS).isdisjoint(TrapParams().as_dict())
+
+
 def test_graph_message_is_lossless(ros_bag: Path) -> None:
     from std_msgs.msg import Header
 

@@ -45,15 +45,16 @@ class TrapParams:
                                      "(the paper's rule of thumb)")
     freq_min: float = _p(0.0, "minimum frames holding a pattern: 0 = freq_st_min (paper), < 1 share, >= 1 frames")
     max_faces: int = _p(3, "largest pattern, in faces")
-    window: int = _p(1500, "frames mined at once: longer videos are mined in windows overlapping by tau frames and "
+    mining_window: int = _p(1500, "frames mined at once: longer videos are mined in windows overlapping by tau frames and "
                            "stitched, memory bounded (ours); shares in freq_st_min/freq_min are of the window; "
                            "0 = the whole video at once (paper)")
     method: str = _p("robust", "paper (TRAP as published) or robust (ours: README 'Method')")
     one_path: bool = _p(True, "robust: link each pattern's occurrences one to one (one object, one path)")
-    min_speed: float = _p(0.04, "robust: image widths per second, relative to the camera, below which patterns "
-                                "are background (0.04 = 1 px/frame at 640 px, 25 Hz); 0 = off")
+    min_speed: float = _p(0.03, "robust: image widths per second, relative to the camera and over tau/2 frames, "
+                                "below which patterns are background (0.03 = 0.75 px/frame at 640 px, 25 Hz); 0 = off")
     rejoin: bool = _p(True, "robust: rejoin fragments of one object across occlusions and exits")
-    rejoin_similarity: float = _p(0.3, "robust: Jaccard similarity of structures needed to rejoin fragments")
+    rejoin_similarity: float = _p(0.3, "robust: share of the smaller fragment's structures the other must have to "
+                                       "rejoin them")
     core_share: float = _p(0.8, "robust: track box from regions in at least this share of the occurrences; 0 = all")
     size_jump: float = _p(1.5, "robust: a track box this many times wider or taller than its running median (2 tau "
                                "frames each side) holds more than the object: it is given the usual size; 0 = off")
@@ -78,7 +79,8 @@ class TrapParams:
             (self.eps > 0 and self.tau >= 1, "eps must be > 0 and tau >= 1"),
             (self.freq_st_min > 0 and self.freq_min >= 0, "freq_st_min must be > 0 and freq_min >= 0"),
             (1 <= self.max_faces <= 8, "max_faces must be within 1..8"),
-            (self.window == 0 or self.window > 2 * self.tau, "window must be 0 (whole video) or more than 2 x tau"),
+            (self.mining_window == 0 or self.mining_window > 2 * self.tau,
+             "mining_window must be 0 (whole video) or more than 2 x tau"),
             (0 <= self.ignore_top < 1 and 0 <= self.length_tolerance <= 1,
              "ignore_top must be within [0, 1) and length_tolerance within [0, 1]"),
             (self.n_objects >= 0 and 0 <= self.min_track_length <= 1, "n_objects >= 0, min_track_length within [0, 1]"),

@@ -1,8 +1,8 @@
 """Stage 3 on a stream: spatio-temporal patterns of a video's plane graphs as they arrive.
 
-With ``window > 0`` (the default) the graphs are mined window by window while later frames
+With ``mining_window > 0`` (the default) the graphs are mined window by window while later frames
 are still being segmented, and the windows are stitched (:mod:`trap_core.mining.windows`):
-memory holds one window's face sets instead of the whole video's. With ``window = 0`` the
+memory holds one window's face sets instead of the whole video's. With ``mining_window = 0`` the
 whole video is mined at once, at the end, as the paper does.
 """
 from __future__ import annotations
@@ -19,7 +19,7 @@ class PatternMiner:
     """Feed it every frame's graph with :meth:`add`; :meth:`finish` returns the patterns.
 
     ``n_frames`` (when known in advance) turns frequencies given as shares into frame counts;
-    with windows they are shares of ``min(n_frames, window)``, the span mined at once.
+    with windows they are shares of ``min(n_frames, mining_window)``, the span mined at once.
     """
 
     def __init__(self, params: TrapParams, n_frames: int | None = None) -> None:
@@ -27,9 +27,9 @@ class PatternMiner:
         self.seconds = 0.0
         self._graphs: list[PlaneGraph] = []
         self._windows: WindowedMiner | None = None
-        if params.window > 0:
-            span = min(n_frames, params.window) if n_frames else params.window
-            self._windows = WindowedMiner(params.mining(span), params.window,
+        if params.mining_window > 0:
+            span = min(n_frames, params.mining_window) if n_frames else params.mining_window
+            self._windows = WindowedMiner(params.mining(span), params.mining_window,
                                           choose_params=self._auto_params if params.auto_frequency else None)
 
     def add(self, graph: PlaneGraph) -> None:

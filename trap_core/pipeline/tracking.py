@@ -14,7 +14,8 @@ from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
-from trap_core.robust import border_contacts, camera_transforms, steady_boxes, observed_paths, rejoin_fragments, world_speed
+from trap_core.robust import (border_contacts, camera_transforms, observed_paths, rejoin_fragments, steady_boxes,
+                              world_speed)
 
 
 @dataclass
@@ -65,7 +66,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     clustered = np.arange(mined.n_st)
     if robust and params.min_speed > 0:
         observed = observed_paths(mined)
-        speed = world_speed(observed, camera_transforms(observed, n_frames), mined.n_st)
+        speed = world_speed(observed, camera_transforms(observed, n_frames), mined.n_st, max(1, params.tau // 2))
         clustered = np.flatnonzero(speed >= params.min_speed * width / fps)
     seconds["camera"] = time.perf_counter() - start
     start = time.perf_counter()

@@ -63,21 +63,36 @@ def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:
     return transforms
 
 
-def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int) -> np.ndarray:
-    """(S,) median speed of each pattern in world coordinates, pixels per frame (0 if seen once)."""
+def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, lag: int = 1) -> np.ndarray:
+    """(S,) speed of each pattern in world coordinates, pixels per frame (0 if seen once).
+
+    The median over the pattern's observations of its displacement to the first observation
+    at least ``lag`` frames later, divided by the frames between (first to last observation
+    for a pattern seen for less than ``lag`` frames). Over a lag of a second, jitter of the
+    barycentres (regions changing shape with noise) does not add up while motion does.
+    """
     inverse = np.linalg.inv(transforms)
     world = np.empty((len(paths.frame), 2))
     for axis in (0, 1):  # row ``axis`` of each observation's inverse transform, one coefficient at a time
         world[:, axis] = inverse[paths.frame, axis, 2]
         world[:, axis] += inverse[paths.frame, axis, 0] * paths.position[:, 0]
         world[:, axis] += inverse[paths.frame, axis, 1] * paths.position[:, 1]
-    same = paths.pattern[1:] == paths.pattern[:-1]
-    rate = np.linalg.norm(np.diff(world, axis=0), axis=1) / np.maximum(np.diff(paths.frame), 1)
-    owner, rate = paths.pattern[1:][same], rate[same]
+    stride = int(paths.frame.max(initial=0)) + lag + 1
+    key = paths.pattern * stride + paths.frame
+    later = np.searchsorted(key, key + lag)  # observations are sorted by pattern, then frame
+    last = np.searchsorted(paths.pattern, paths.pattern, side="right") - 1
+    later = np.where((later < key.size) & (later <= last), later, -1)
+    first = np.r_[True, paths.pattern[1:] != paths.pattern[:-1]]
+    short = first & (later < 0) & (last > np.arange(key.size))  # seen for less than lag frames
+    start = np.flatnonzero(later >= 0)
+    start = np.r_[start, np.flatnonzero(short)]
+    end = np.r_[later[later >= 0], last[short]]
+    rate = np.linalg.norm(world[end] - world[start], axis=1) / (paths.frame[end] - paths.frame[start])
+    owner = paths.pattern[start]
     speed = np.zeros(n_patterns)
     if owner.size:
         # sort by owner, then rate: the integer part of the key is the owner (one argsort of
-        # floats is several times faster than a two-key lexsort over millions of steps)
+        # floats is several times faster than a two-key lexsort over millions of observations)
         order = np.argsort(owner + rate / (rate.max() + 1.0))
         owner, rate = owner[order], rate[order]
         bounds = np.searchsorted(owner, np.arange(n_patterns + 1))

@@ -4,8 +4,9 @@ section 10 "fragments never rejoin").
 The pattern distance is infinite between patterns that share no frames, so an object that
 disappears for a while comes back as another cluster. Two clusters are joined when they do
 not overlap in time (at most ``max_overlap`` shared frames), are made of the same structures
-(Jaccard similarity of their plane patterns at least ``min_similarity``), and, among all such
-pairs, the later one starts closest to where the earlier one's motion predicts; pairs are
+(the share of the smaller one's plane patterns that the other also has is at least
+``min_similarity``: a short fragment may show only some of the object's structures), and,
+among all such pairs, the later one starts closest to where the earlier one's motion predicts; pairs are
 joined greedily, closest first, and a joined cluster can no longer take a fragment that
 overlaps it, which keeps look-alike objects apart. With the fragments' border contacts, a
 fragment that left the view (its last box at the image border) continues only one that
@@ -39,7 +40,7 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     signature[labels, st_pattern] = True
     shared = signature.astype(np.float32) @ signature.T.astype(np.float32)
     sizes = signature.sum(axis=1)
-    similarity = shared / np.maximum(sizes[:, None] + sizes[None, :] - shared, 1)
+    similarity = shared / np.maximum(np.minimum(sizes[:, None], sizes[None, :]), 1)
     covered = summary.covered.astype(np.float32)
     overlap = covered @ covered.T
     start = summary.paths.start

@@ -84,3 +84,17 @@ def test_short_and_empty_streams(graphs) -> None:
 def test_bad_windows(window: int, overlap: int) -> None:
     with pytest.raises(MiningError):
         WindowedMiner(MiningParams(tau=10), window, overlap)
+
+
+def test_automatic_frequency_is_chosen_on_the_first_window(graphs) -> None:
+    from trap_core.mining import mine_auto
+    from trap_core.pipeline import PatternMiner, TrapParams
+    params = TrapParams(segmentation="colour", tau=10, freq_st_min=30, max_faces=2, auto_frequency=True,
+                        mining_window=60)
+    miner = PatternMiner(params, len(graphs))
+    for graph in graphs:
+        miner.add(graph)
+    stitched = miner.finish()
+    _, frequency = mine_auto(graphs[:60], params.mining(60))
+    assert miner._windows.params.freq_st_min == miner._windows.params.freq_min == frequency < 30
+    assert stitched.n_st > 0 and stitched.freq_st().min() >= frequency

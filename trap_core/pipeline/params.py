@@ -63,7 +63,7 @@ class TrapParams:
     n_objects: int = _p(0, "objects to track; 0 = found without supervision (ours)")
     length_tolerance: float = _p(0.1, "share of the video: clusters this close to the longest compete")
     min_track_length: float = _p(0.25, "share of the video a track must cover when n_objects = 0 (ours)")
-    separation: float = _p(40.0, "px: paths of kept tracks must be at least this far apart (ours)")
+    separation: float = _p(40.0, "px: a cluster this close to kept tracks in most of its frames is not a new object (ours)")
     threads: int = _p(2, "segmentation threads")
 
     def __post_init__(self) -> None:

@@ -82,7 +82,7 @@ class WindowedMiner:
         self._pieces: list[_Piece] = []       # windows whose frames are all owned
         self._last: _Piece | None = None      # the newest window, its end not owned yet
         self._parent: list[int] = []          # union-find over global components
-        self._owned_frames: list[int] = []    # distinct owned frames of each component
+        self._owned_frames = np.zeros(0, dtype=np.int64)  # distinct owned frames of each component
         self._pattern_faces: dict[int, int] = {}
         self._pattern_frequency: dict[int, int] = {}
         self.windows_mined = 0
@@ -103,17 +103,24 @@ class WindowedMiner:
 
     def finish(self) -> MiningResult:
         """Mine what is left and return the stitched spatio-temporal patterns of all frames."""
-        if self.frames > self._mined_until or self._last is None:
+        if self._last is None:  # the whole stream fits in one window: nothing to stitch
+            self._choose()
+            self.windows_mined = 1
+            return mine(self._graphs, self.params)
+        if self.frames > self._mined_until:
             self._mine(final=True)
         self._settle(self._last, np.arange(self._last.frame.size))
         self._pieces.append(self._last)
         self._last = None
         return self._result()
 
-    def _mine(self, final: bool) -> None:
+    def _choose(self) -> None:
         if self._choose_params is not None:
             self.params = self._choose_params(self._graphs)
             self._choose_params = None
+
+    def _mine(self, final: bool) -> None:
+        self._choose()
         head = self.overlap if self._last is not None else 0
         mined = mine(self._graphs, self.params, first_frame=self._start,
                      open_ends=(head, 0 if final else self.overlap))
@@ -126,7 +133,7 @@ class WindowedMiner:
         local[mined.st_rows] = np.repeat(np.arange(mined.n_st), np.diff(mined.st_offsets))
         first_id = len(self._parent)
         self._parent.extend(range(first_id, first_id + mined.n_st))
-        self._owned_frames.extend([0] * mined.n_st)
+        self._owned_frames = np.r_[self._owned_frames, np.zeros(mined.n_st, dtype=np.int64)]
         piece = _Piece(mined.occ_frame, mined.pattern_hash[mined.occ_pattern], mined.occ_faces, mined.occ_position,
                        mined.occ_box, mined.occ_node_box, local + first_id)
         if self._last is not None:
@@ -160,10 +167,9 @@ class WindowedMiner:
 
     def _settle(self, piece: _Piece, rows: np.ndarray) -> None:
         """Count the distinct frames each component owns in ``rows`` of ``piece``."""
-        pairs = np.unique(np.column_stack([piece.component[rows], piece.frame[rows]]), axis=0)
-        components, counts = np.unique(pairs[:, 0], return_counts=True)
-        for component, count in zip(components.tolist(), counts.tolist()):
-            self._owned_frames[component] += count
+        stride = int(piece.frame.max(initial=0)) + 1
+        owned = np.unique(piece.component[rows] * stride + piece.frame[rows]) // stride
+        self._owned_frames += np.bincount(owned, minlength=len(self._parent))
 
     def _find(self, node: int) -> int:
         parent = self._parent
@@ -184,8 +190,7 @@ class WindowedMiner:
             if np.array_equal(grand, parent):
                 break
             parent = grand
-        frames_of_root = np.bincount(parent, weights=np.array(self._owned_frames, dtype=float),
-                                     minlength=parent.size)
+        frames_of_root = np.bincount(parent, weights=self._owned_frames, minlength=parent.size)
         kept = [frames_of_root[parent[piece.component]] >= self.params.freq_st_min for piece in self._pieces]
         root = np.concatenate([parent[piece.component[k]] for piece, k in zip(self._pieces, kept)])
         frame = np.concatenate([piece.frame[k] for piece, k in zip(self._pieces, kept)])

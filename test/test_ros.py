@@ -158,10 +158,11 @@ def _process_bag(executable: Path, bag: Path, out: Path, *extra: str) -> subproc
                           text=True, timeout=300)
 
 
+@pytest.mark.parametrize("mining_window", [1500, 51])  # the bag in one window; in two, stitched in the node
 def test_process_bag_writes_every_output_and_matches_the_core_pipeline(ros_bag: Path, venv_bin: Path,
-                                                                        tmp_path: Path) -> None:
+                                                                        tmp_path: Path, mining_window: int) -> None:
     done = _process_bag(venv_bin / "process_bag", ros_bag, tmp_path / "ros", "--ros-args", "--params-file",
-                        str(TOP / "config" / "synthetic.yaml"))
+                        str(TOP / "config" / "synthetic.yaml"), "-p", f"mining_window:={mining_window}")
     assert done.returncode == 0, done.stderr[-2000:]
     out = tmp_path / "ros"
     summary = json.loads((out / "summary.json").read_text())
@@ -175,7 +176,7 @@ def test_process_bag_writes_every_output_and_matches_the_core_pipeline(ros_bag: 
         _, _, raw = next(reader.messages(connections=[connection]))
         message = reader.deserialize(raw, connection.msgtype)
         assert message.header.frame_id == "camera"
-    core = run_bag(ros_bag, tmp_path / "core", TrapParams(segmentation="colour"))
+    core = run_bag(ros_bag, tmp_path / "core", TrapParams(segmentation="colour", mining_window=mining_window))
     assert core.frames == 60
     np.testing.assert_allclose(read_mot(out / "tracks.txt"), read_mot(tmp_path / "core" / "tracks.txt"))
 

@@ -56,7 +56,7 @@ class TrapParams:
     rejoin_similarity: float = _p(0.3, "robust: share of the smaller fragment's structures the other must have to "
                                        "rejoin them")
     core_share: float = _p(0.8, "robust: track box from regions in at least this share of the occurrences; 0 = all")
-    size_jump: float = _p(1.5, "robust: a track box this many times wider or taller than its running median (2 tau "
+    size_jump: float = _p(1.5, "robust: a track box this many times wider or taller than its running median (4 tau "
                                "frames each side) holds more than the object: it is given the usual size; 0 = off")
     linkage: str = _p("average", "hierarchical clustering linkage: average, single, complete, weighted (ours)")
     ignore_top: float = _p(0.1, "share of the top levels of the hierarchy the lifetime cut ignores")

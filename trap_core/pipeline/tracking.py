@@ -89,7 +89,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     tracks = [build_track(mined, all_labels, cluster, track_id, graphs, params.core_share if robust else 0.0)
               for track_id, cluster in enumerate(selected, start=1)]
     if robust and params.size_jump:
-        tracks = [dataclasses.replace(t, boxes=steady_boxes(t.frames, t.boxes, params.size_jump, 2 * params.tau))
+        tracks = [dataclasses.replace(t, boxes=steady_boxes(t.frames, t.boxes, params.size_jump, 4 * params.tau))
                   for t in tracks]
     seconds["clustering"] = time.perf_counter() - start
     return TrackingResult(mined, sub_paths, clustered, hierarchy, summary, selected, tracks, all_labels, seconds)

@@ -102,6 +102,22 @@ def test_rejoin_follows_the_way_an_object_went() -> None:
     assert labels[0] == labels[2] != labels[1]
 
 
+def test_a_fragment_leaves_at_the_border_if_one_of_its_last_patterns_does() -> None:
+    """An object's patterns do not all vanish on the same frame: the one that reached the border
+    decides, if it ended within ``max_overlap`` frames of the fragment's end."""
+    line = lambda n, x0, dx: np.column_stack([x0 + dx * np.arange(n), np.full(n, 100.0)])  # noqa: E731
+    paths = _paths([(0, line(55, 455, 3)),      # fragment A, pattern at the border until frame 54
+                    (0, line(59, 450, 3)),      # fragment A, a pattern inside the view until frame 58
+                    (100, line(40, 630, -3))])  # fragment B enters from the border at frame 100
+    starts_at_border, ends_at_border = np.array([False, False, True]), np.array([True, False, False])
+    joined = rejoin_fragments(np.array([0, 0, 1]), paths, np.array([5, 6, 5]), 140, max_overlap=5,
+                              at_border=(starts_at_border, ends_at_border))
+    assert joined[0] == joined[2]
+    apart = rejoin_fragments(np.array([0, 0, 1]), paths, np.array([5, 6, 5]), 140, max_overlap=0,
+                             at_border=(starts_at_border, ends_at_border))
+    assert apart[0] != apart[2]
+
+
 def test_border_contacts_of_first_and_last_boxes() -> None:
     from trap_core.mining import MiningResult
     from trap_core.robust import border_contacts

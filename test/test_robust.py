@@ -64,6 +64,7 @@ def test_world_speed_over_a_lag_ignores_jitter_but_not_motion() -> None:
     over_lag = world_speed(paths, still, 2, lag=12)
     assert step[0] > 1.0  # frame to frame, jitter looks like motion
     assert over_lag[0] < 0.5 and over_lag[1] == pytest.approx(2.0, abs=0.1)
+    np.testing.assert_allclose(world_speed(paths, still, 2, lag=12, chunk=7), over_lag)  # whole patterns per chunk
     short = ObservedPaths(np.zeros(5, int), np.arange(5), np.column_stack([3.0 * np.arange(5), np.zeros(5)]))
     assert world_speed(short, still[:5], 1, lag=12)[0] == pytest.approx(3.0)  # shorter than the lag: end to end
 

@@ -9,6 +9,7 @@ from rclpy.executors import ExternalShutdownException
 
 from trap_core.bagio import BagError
 from trap_core.pipeline import ParameterError
+from trap_ros.memory import limit_malloc_arenas
 
 
 def run_node(name: str, body: Callable[[], int], args: list[str] | None) -> None:
@@ -16,6 +17,7 @@ def run_node(name: str, body: Callable[[], int], args: list[str] | None) -> None
 
     Bad input ends with ``name: error: ...`` on stderr and exit code 1; Ctrl-C with 130.
     """
+    limit_malloc_arenas()
     rclpy.init(args=args)
     code = 0
     try:

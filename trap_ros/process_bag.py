@@ -27,6 +27,7 @@ from trap_core.pipeline import BagRun, ParameterError, TrapParams
 from trap_core.pipeline.bag_run import write_outputs
 from trap_core.progress import Progress
 from trap_ros.bag_reader_node import BagReaderNode
+from trap_ros.memory import limit_malloc_arenas
 from trap_ros.mining_node import MiningNode
 from trap_ros.recording import write_results_bag
 from trap_ros.segmentation_node import SegmentationNode
@@ -148,4 +149,5 @@ def main() -> None:
     # Several threads (reader, executor, segmentation pool) hand the GIL to each other per frame;
     # with the default 5 ms switch interval they queue behind each other (measured: 7 vs 45 fps).
     sys.setswitchinterval(0.0005)
+    limit_malloc_arenas()
     sys.exit(run_main(_main, "process_bag"))

@@ -194,12 +194,12 @@ class WindowedMiner:
         kept = [frames_of_root[parent[piece.component]] >= self.params.freq_st_min for piece in self._pieces]
         root = np.concatenate([parent[piece.component[k]] for piece, k in zip(self._pieces, kept)])
         frame = np.concatenate([piece.frame[k] for piece, k in zip(self._pieces, kept)])
-        order = np.lexsort((frame, root))
+        order = np.lexsort((frame, root))  # the rows of each pattern, by frame: st_rows (no data moved)
         root = root[order]
         fields = {}
         for name in ("frame", "pattern_hash", "faces", "position", "box", "node_box"):
             # one field at a time, each window's copy freed as soon as it is gathered
-            fields[name] = np.concatenate([getattr(piece, name)[k] for piece, k in zip(self._pieces, kept)])[order]
+            fields[name] = np.concatenate([getattr(piece, name)[k] for piece, k in zip(self._pieces, kept)])
             for piece in self._pieces:
                 setattr(piece, name, None)
         self._pieces = []
@@ -210,8 +210,8 @@ class WindowedMiner:
                                                    dtype=np.int64),
                             np.array([self._pattern_faces[h] for h in pattern_hash.tolist()], dtype=np.int64),
                             fields["frame"], occ_pattern, fields["position"], fields["box"], fields["node_box"],
-                            fields["faces"], occ_pattern[starts].astype(np.int64),
-                            np.r_[starts, root.size].astype(np.int64), np.arange(root.size, dtype=np.int32))
+                            fields["faces"], occ_pattern[order[starts]].astype(np.int64),
+                            np.r_[starts, root.size].astype(np.int64), order.astype(np.int32))
 
 
 def _identical(before: np.ndarray, after: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

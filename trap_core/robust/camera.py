@@ -27,16 +27,21 @@ class ObservedPaths:
 
 
 def observed_paths(result: MiningResult) -> ObservedPaths:
-    """Mean position of each spatio-temporal pattern in each frame where it occurs."""
-    owner = np.repeat(np.arange(result.n_st), np.diff(result.st_offsets))
+    """Mean position of each spatio-temporal pattern in each frame where it occurs.
+
+    Each pattern's rows are sorted by frame, so the (pattern, frame) groups are runs: summed
+    with one ``reduceat``, without sorting millions of keys (memory at the end of a long bag).
+    """
     frames = result.occ_frame[result.st_rows]
-    key = owner.astype(np.int64) * (int(frames.max(initial=0)) + 1) + frames
-    keys, inverse = np.unique(key, return_inverse=True)
-    counts = np.bincount(inverse)
-    position = np.column_stack([np.bincount(inverse, weights=result.occ_position[result.st_rows, axis]) / counts
-                                for axis in (0, 1)])
-    stride = int(frames.max(initial=0)) + 1
-    return ObservedPaths(keys // stride, keys % stride, position)
+    new_group = np.ones(frames.size, dtype=bool)
+    new_group[1:] = frames[1:] != frames[:-1]
+    new_group[result.st_offsets[1:-1]] = True  # a new pattern starts a new group
+    starts = np.flatnonzero(new_group)
+    counts = np.diff(np.r_[starts, frames.size])
+    position = np.add.reduceat(result.occ_position[result.st_rows].astype(np.float64), starts, axis=0) \
+        if starts.size else np.empty((0, 2))
+    pattern = np.searchsorted(result.st_offsets, starts, side="right") - 1
+    return ObservedPaths(pattern, frames[starts].astype(np.int64), position / counts[:, None])
 
 
 def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:
@@ -63,41 +68,53 @@ def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:
     return transforms
 
 
-def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, lag: int = 1) -> np.ndarray:
+def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, lag: int = 1,
+                chunk: int = 1 << 20) -> np.ndarray:
     """(S,) speed of each pattern in world coordinates, pixels per frame (0 if seen once).
 
     The median over the pattern's observations of its displacement to the first observation
     at least ``lag`` frames later, divided by the frames between (first to last observation
     for a pattern seen for less than ``lag`` frames). Over a lag of a second, jitter of the
     barycentres (regions changing shape with noise) does not add up while motion does.
+    Computed on whole patterns of about ``chunk`` observations at a time (bounded memory).
     """
     inverse = np.linalg.inv(transforms)
-    world = np.empty((len(paths.frame), 2))
-    for axis in (0, 1):  # row ``axis`` of each observation's inverse transform, one coefficient at a time
-        world[:, axis] = inverse[paths.frame, axis, 2]
-        world[:, axis] += inverse[paths.frame, axis, 0] * paths.position[:, 0]
-        world[:, axis] += inverse[paths.frame, axis, 1] * paths.position[:, 1]
-    stride = int(paths.frame.max(initial=0)) + lag + 1
-    key = paths.pattern * stride + paths.frame
-    later = np.searchsorted(key, key + lag)  # observations are sorted by pattern, then frame
-    last = np.searchsorted(paths.pattern, paths.pattern, side="right") - 1
-    later = np.where((later < key.size) & (later <= last), later, -1)
-    first = np.r_[True, paths.pattern[1:] != paths.pattern[:-1]]
-    short = first & (later < 0) & (last > np.arange(key.size))  # seen for less than lag frames
-    start = np.flatnonzero(later >= 0)
-    start = np.r_[start, np.flatnonzero(short)]
-    end = np.r_[later[later >= 0], last[short]]
-    rate = np.linalg.norm(world[end] - world[start], axis=1) / (paths.frame[end] - paths.frame[start])
-    owner = paths.pattern[start]
     speed = np.zeros(n_patterns)
-    if owner.size:
-        # sort by owner, then rate: the integer part of the key is the owner (one argsort of
-        # floats is several times faster than a two-key lexsort over millions of observations)
-        order = np.argsort(owner + rate / (rate.max() + 1.0))
-        owner, rate = owner[order], rate[order]
-        bounds = np.searchsorted(owner, np.arange(n_patterns + 1))
-        count = np.diff(bounds)
-        seen = np.flatnonzero(count)
-        low, high = bounds[seen] + (count[seen] - 1) // 2, bounds[seen] + count[seen] // 2
-        speed[seen] = 0.5 * (rate[low] + rate[high])
+    edges = np.searchsorted(paths.pattern, paths.pattern[::chunk], side="left").tolist() + [len(paths.frame)]
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        if hi > lo:
+            _chunk_speed(paths.pattern[lo:hi], paths.frame[lo:hi], paths.position[lo:hi], inverse, lag, speed)
     return speed
+
+
+def _chunk_speed(pattern: np.ndarray, frame: np.ndarray, position: np.ndarray, inverse: np.ndarray, lag: int,
+                 speed: np.ndarray) -> None:
+    """:func:`world_speed` of the whole patterns of one run of observations, written into ``speed``."""
+    world = np.empty((len(frame), 2))
+    for axis in (0, 1):  # row ``axis`` of each observation's inverse transform, one coefficient at a time
+        world[:, axis] = inverse[frame, axis, 2]
+        world[:, axis] += inverse[frame, axis, 0] * position[:, 0]
+        world[:, axis] += inverse[frame, axis, 1] * position[:, 1]
+    local = pattern - pattern[0]
+    stride = int(frame.max()) + lag + 1
+    key = local * stride + frame
+    later = np.searchsorted(key, key + lag)  # observations are sorted by pattern, then frame
+    last = np.searchsorted(local, local, side="right") - 1
+    later = np.where((later < key.size) & (later <= last), later, -1)
+    first = np.r_[True, local[1:] != local[:-1]]
+    short = first & (later < 0) & (last > np.arange(key.size))  # seen for less than lag frames
+    start = np.r_[np.flatnonzero(later >= 0), np.flatnonzero(short)]
+    end = np.r_[later[later >= 0], last[short]]
+    if start.size == 0:
+        return
+    rate = np.linalg.norm(world[end] - world[start], axis=1) / (frame[end] - frame[start])
+    owner = local[start]
+    # sort by owner, then rate: the integer part of the key is the owner (one argsort of floats
+    # is several times faster than a two-key lexsort over millions of observations)
+    order = np.argsort(owner + rate / (rate.max() + 1.0))
+    owner, rate = owner[order], rate[order]
+    bounds = np.searchsorted(owner, np.arange(int(local[-1]) + 2))
+    count = np.diff(bounds)
+    seen = np.flatnonzero(count)
+    low, high = bounds[seen] + (count[seen] - 1) // 2, bounds[seen] + count[seen] // 2
+    speed[pattern[0] + seen] = 0.5 * (rate[low] + rate[high])

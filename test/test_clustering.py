@@ -6,7 +6,8 @@ import pytest
 from scipy.cluster.hierarchy import linkage
 
 from trap_core.clustering import (ClusteringError, Trajectories, build_track, cluster_patterns, labels_after_merges,
-                                  lifetime_cut, pattern_distances, select_clusters, summarise, trajectories)
+                                  lifetime_cut, observed_paths, pattern_distances, select_clusters, summarise,
+                                  trajectories)
 from trap_core.mining import MiningResult
 
 
@@ -46,7 +47,7 @@ def test_trajectories_average_and_interpolate() -> None:
     result = MiningResult(np.array([1]), np.array([2]), np.array([1]), frames, np.zeros(3, np.int64), positions,
                           np.zeros((3, 4)), np.zeros((3, 4)), np.zeros((3, 1), np.int64), np.array([0]),
                           np.array([0, 3]), np.arange(3))
-    paths = trajectories(result)
+    paths = trajectories(observed_paths(result), np.arange(result.n_st))
     assert paths.start.tolist() == [2] and paths.end.tolist() == [5]
     np.testing.assert_allclose(paths.of(0), [[1, 1], [2, 3], [3, 5], [4, 7]])
 

@@ -4,11 +4,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from trap_core.clustering import Trajectories
+from trap_core.clustering import ObservedPaths, Trajectories
 from trap_core.evaluation import box_precision_recall
 from trap_core.mining._kernels import assign_occurrences, link_occurrences
 from trap_core.pipeline import TrapParams, frame_graph, track
-from trap_core.robust import ObservedPaths, camera_transforms, rejoin_fragments, steady_boxes, world_speed
+from trap_core.robust import camera_transforms, rejoin_fragments, steady_boxes, world_speed
 from trap_core.synthetic import PRESETS, SceneConfig, render
 
 

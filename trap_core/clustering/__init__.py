@@ -5,19 +5,21 @@ from trap_core.clustering.errors import ClusteringError
 from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns, labels_after_merges, lifetime_cut
 from trap_core.clustering.selection import ClusterSummary, select_clusters, summarise
 from trap_core.clustering.tracks import Track, build_track
-from trap_core.clustering.trajectory import Trajectories, trajectories
+from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
 
 __all__ = [
     "LINKAGES",
     "ClusterSummary",
     "ClusteringError",
     "Hierarchy",
+    "ObservedPaths",
     "Track",
     "Trajectories",
     "build_track",
     "cluster_patterns",
     "labels_after_merges",
     "lifetime_cut",
+    "observed_paths",
     "pattern_distances",
     "select_clusters",
     "summarise",

@@ -51,15 +51,35 @@ class Trajectories:
         return Trajectories.pack([frames[0] for frames, _ in samples], pieces)
 
 
-def trajectories(result: MiningResult, patterns: np.ndarray | None = None) -> Trajectories:
-    """Build the trajectory of each spatio-temporal pattern of ``result`` (of ``patterns`` only,
-    in that order, when given)."""
-    samples = []
-    for s in (range(result.n_st) if patterns is None else patterns):
-        rows = result.st(s)
-        known, inverse = np.unique(result.occ_frame[rows], return_inverse=True)
-        counts = np.bincount(inverse)
-        mean = np.column_stack([np.bincount(inverse, weights=result.occ_position[rows, axis]) / counts
-                                for axis in (0, 1)])
-        samples.append((known, mean))
-    return Trajectories.from_samples(samples)
+@dataclass(frozen=True)
+class ObservedPaths:
+    """Per spatio-temporal pattern and observed frame: the mean position of its occurrences."""
+
+    pattern: np.ndarray   # (K,) sorted by pattern then frame
+    frame: np.ndarray     # (K,)
+    position: np.ndarray  # (K, 2)
+
+
+def observed_paths(result: MiningResult) -> ObservedPaths:
+    """Mean position of each spatio-temporal pattern in each frame where it occurs.
+
+    Each pattern's rows are sorted by frame, so the (pattern, frame) groups are runs: summed
+    with one ``reduceat``, without sorting millions of keys (memory at the end of a long bag).
+    """
+    frames = result.occ_frame[result.st_rows]
+    new_group = np.ones(frames.size, dtype=bool)
+    new_group[1:] = frames[1:] != frames[:-1]
+    new_group[result.st_offsets[1:-1]] = True  # a new pattern starts a new group
+    starts = np.flatnonzero(new_group)
+    counts = np.diff(np.r_[starts, frames.size])
+    position = np.add.reduceat(result.occ_position[result.st_rows].astype(np.float64), starts, axis=0) \
+        if starts.size else np.empty((0, 2))
+    pattern = np.searchsorted(result.st_offsets, starts, side="right") - 1
+    return ObservedPaths(pattern, frames[starts].astype(np.int64), position / counts[:, None])
+
+
+def trajectories(observed: ObservedPaths, patterns: np.ndarray) -> Trajectories:
+    """Trajectory of each of ``patterns`` (in that order) from its mean position per observed
+    frame (TRAP_SPEC section 4)."""
+    bounds = np.searchsorted(observed.pattern, np.stack([patterns, np.asarray(patterns) + 1]))
+    return Trajectories.from_samples([(observed.frame[lo:hi], observed.position[lo:hi]) for lo, hi in bounds.T])

@@ -78,7 +78,6 @@ class WindowedMiner:
         self._choose_params = choose_params
         self._graphs: list[PlaneGraph] = []
         self._start = 0                       # global frame of self._graphs[0]
-        self._mined_until = 0                 # frames before this one were mined
         self._pieces: list[_Piece] = []       # windows whose frames are all owned
         self._last: _Piece | None = None      # the newest window, its end not owned yet
         self._parent: list[int] = []          # union-find over global components
@@ -107,9 +106,9 @@ class WindowedMiner:
             self._choose()
             self.windows_mined = 1
             return mine(self._graphs, self.params)
-        if self.frames > self._mined_until:
+        if len(self._graphs) > self.overlap:  # frames added since the last window was mined
             self._mine(final=True)
-        self._settle(self._last, np.arange(self._last.frame.size))
+        self._settle(self._last)
         self._pieces.append(self._last)
         self._last = None
         return self._result()
@@ -139,7 +138,6 @@ class WindowedMiner:
         if self._last is not None:
             piece = self._stitch(self._last, piece)
         self._last = piece
-        self._mined_until = self.frames
 
     def _stitch(self, previous: _Piece, piece: _Piece) -> _Piece:
         """Join components through shared occurrences. A shared occurrence is owned by the
@@ -161,14 +159,14 @@ class WindowedMiner:
         keep_after = np.ones(piece.frame.size, dtype=bool)
         keep_after[same_after[piece.frame[same_after] < border]] = False
         owned = previous.take(keep_before)
-        self._settle(owned, np.arange(owned.frame.size))
+        self._settle(owned)
         self._pieces.append(owned)
         return piece.take(keep_after)
 
-    def _settle(self, piece: _Piece, rows: np.ndarray) -> None:
-        """Count the distinct frames each component owns in ``rows`` of ``piece``."""
+    def _settle(self, piece: _Piece) -> None:
+        """Count the distinct frames each component owns in ``piece`` (whose frames it owns)."""
         stride = int(piece.frame.max(initial=0)) + 1
-        owned = np.unique(piece.component[rows] * stride + piece.frame[rows]) // stride
+        owned = np.unique(piece.component * stride + piece.frame) // stride
         self._owned_frames += np.bincount(owned, minlength=len(self._parent))
 
     def _find(self, node: int) -> int:

@@ -9,13 +9,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from trap_core.clustering import (ClusterSummary, Hierarchy, Track, Trajectories, build_track, cluster_patterns,
-                                  pattern_distances, select_clusters, summarise, trajectories)
+                                  observed_paths, pattern_distances, select_clusters, summarise, trajectories)
 from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
-from trap_core.robust import (border_contacts, camera_transforms, observed_paths, rejoin_fragments, steady_boxes,
-                              world_speed)
+from trap_core.robust import border_contacts, camera_transforms, rejoin_fragments, steady_boxes, world_speed
 
 
 @dataclass
@@ -63,14 +62,14 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     mined = miner.finish()
     seconds["mining"] = miner.seconds
     start = time.perf_counter()
+    observed = observed_paths(mined)  # each pattern's mean position per frame: camera motion and trajectories
     clustered = np.arange(mined.n_st)
     if robust and params.min_speed > 0:
-        observed = observed_paths(mined)
         speed = world_speed(observed, camera_transforms(observed, n_frames), mined.n_st, max(1, params.tau // 2))
         clustered = np.flatnonzero(speed >= params.min_speed * width / fps)
     seconds["camera"] = time.perf_counter() - start
     start = time.perf_counter()
-    sub_paths = trajectories(mined, clustered)
+    sub_paths = trajectories(observed, clustered)
     distances = pattern_distances(sub_paths)
     seconds["distances"] = time.perf_counter() - start
     start = time.perf_counter()

@@ -9,39 +9,10 @@ coordinates ("world"). In the world, background patterns stand still and objects
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import cv2
 import numpy as np
 
-from trap_core.mining import MiningResult
-
-
-@dataclass(frozen=True)
-class ObservedPaths:
-    """Per spatio-temporal pattern and observed frame: the mean position of its occurrences."""
-
-    pattern: np.ndarray   # (K,) sorted by pattern then frame
-    frame: np.ndarray     # (K,)
-    position: np.ndarray  # (K, 2)
-
-
-def observed_paths(result: MiningResult) -> ObservedPaths:
-    """Mean position of each spatio-temporal pattern in each frame where it occurs.
-
-    Each pattern's rows are sorted by frame, so the (pattern, frame) groups are runs: summed
-    with one ``reduceat``, without sorting millions of keys (memory at the end of a long bag).
-    """
-    frames = result.occ_frame[result.st_rows]
-    new_group = np.ones(frames.size, dtype=bool)
-    new_group[1:] = frames[1:] != frames[:-1]
-    new_group[result.st_offsets[1:-1]] = True  # a new pattern starts a new group
-    starts = np.flatnonzero(new_group)
-    counts = np.diff(np.r_[starts, frames.size])
-    position = np.add.reduceat(result.occ_position[result.st_rows].astype(np.float64), starts, axis=0) \
-        if starts.size else np.empty((0, 2))
-    pattern = np.searchsorted(result.st_offsets, starts, side="right") - 1
-    return ObservedPaths(pattern, frames[starts].astype(np.int64), position / counts[:, None])
+from trap_core.clustering import ObservedPaths
 
 
 def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:

@@ -46,8 +46,8 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     start = summary.paths.start
     candidate = (start[:, None] < start[None, :]) & (overlap <= max_overlap) & (similarity >= min_similarity)
     if at_border is not None:
-        enters, leaves = (_cluster_ends(labels, paths, flags, first, max_overlap)
-                          for flags, first in zip(at_border, (True, False)))
+        enters = _flag_near(labels, paths.start, summary.paths.start, at_border[0], max_overlap)
+        leaves = _flag_near(labels, paths.end, summary.paths.end, at_border[1], max_overlap)
         candidate &= leaves[:, None] == enters[None, :]
     earlier, later = np.nonzero(candidate)
     costs = np.array([_prediction_error(summary.paths, a, b) for a, b in zip(earlier, later)])
@@ -72,16 +72,13 @@ def _prediction_error(paths: Trajectories, earlier: int, later: int) -> float:
     return float(np.linalg.norm(paths.of(later)[0] - predicted))
 
 
-def _cluster_ends(labels: np.ndarray, paths: Trajectories, flags: np.ndarray, first: bool, slack: int) -> np.ndarray:
-    """Per cluster: ``flags`` of any of its patterns that starts (``first``) or ends within
-    ``slack`` frames of where the cluster does (an object's patterns do not all vanish at once)."""
-    n_clusters = int(labels.max()) + 1
-    ends = paths.start if first else paths.end
-    edge = np.full(n_clusters, np.iinfo(np.int64).max if first else -1, dtype=np.int64)
-    (np.minimum if first else np.maximum).at(edge, labels, ends)
-    out = np.zeros(n_clusters, dtype=bool)
-    at_edge = np.abs(ends - edge[labels]) <= slack
-    np.logical_or.at(out, labels[at_edge], flags[at_edge])
+def _flag_near(labels: np.ndarray, pattern_edge: np.ndarray, cluster_edge: np.ndarray, flags: np.ndarray,
+               slack: int) -> np.ndarray:
+    """Per cluster: ``flags`` of any of its patterns whose first (last) frame is within ``slack``
+    frames of the cluster's first (last) frame (an object's patterns do not all vanish at once)."""
+    out = np.zeros(cluster_edge.size, dtype=bool)
+    near = np.abs(pattern_edge - cluster_edge[labels]) <= slack
+    np.logical_or.at(out, labels[near], flags[near])
     return out
 
 

@@ -1,8 +1,8 @@
 """Mining node: accumulates plane graphs and mines them window by window as they come; at the end
-of the bag stitches the windows, clusters, selects and publishes ``detections`` (one ``vision_msgs/Detection2DArray`` per frame, header = that frame's
-image header), ``tracks`` (one Detection2DArray per track, latched) and ``trajectories``
-(``visualization_msgs/MarkerArray``). Acknowledges every graph on ``progress`` (the bag
-reader's flow control).
+of the bag stitches the windows, clusters, selects and publishes ``detections`` (one
+``vision_msgs/Detection2DArray`` per frame, header = that frame's image header), ``tracks`` (one
+Detection2DArray per track, latched) and ``trajectories`` (``visualization_msgs/MarkerArray``).
+Acknowledges every graph on ``progress`` (the bag reader's flow control).
 """
 from __future__ import annotations
 

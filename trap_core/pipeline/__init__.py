@@ -6,5 +6,5 @@ from trap_core.pipeline.params import GRAPH_STAGE, METHODS, SEGMENTATIONS, Param
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.pipeline.tracking import TrackingResult, frame_rate, track
 
-__all__ = ["GRAPH_STAGE", "METHODS", "BagRun", "SEGMENTATIONS", "ParameterError", "PatternMiner", "TrackingResult", "TrapParams", "frame_graph",
-           "frame_rate", "graphs_of", "run_bag", "track"]
+__all__ = ["GRAPH_STAGE", "METHODS", "BagRun", "SEGMENTATIONS", "ParameterError", "PatternMiner", "TrackingResult",
+           "TrapParams", "frame_graph", "frame_rate", "graphs_of", "run_bag", "track"]

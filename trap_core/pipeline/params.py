@@ -45,9 +45,9 @@ class TrapParams:
                                      "(the paper's rule of thumb)")
     freq_min: float = _p(0.0, "minimum frames holding a pattern: 0 = freq_st_min (paper), < 1 share, >= 1 frames")
     max_faces: int = _p(3, "largest pattern, in faces")
-    mining_window: int = _p(1500, "frames mined at once: longer videos are mined in windows overlapping by tau frames and "
-                           "stitched, memory bounded (ours); shares in freq_st_min/freq_min are of the window; "
-                           "0 = the whole video at once (paper)")
+    mining_window: int = _p(1500, "frames mined at once: longer videos are mined in windows overlapping by tau "
+                                  "frames and stitched, memory bounded (ours); shares in freq_st_min/freq_min are "
+                                  "of the window; 0 = the whole video at once (paper)")
     method: str = _p("robust", "paper (TRAP as published) or robust (ours: README 'Method')")
     one_path: bool = _p(True, "robust: link each pattern's occurrences one to one (one object, one path)")
     min_speed: float = _p(0.03, "robust: image widths per second, relative to the camera and over tau/2 frames, "
@@ -63,7 +63,8 @@ class TrapParams:
     n_objects: int = _p(0, "objects to track; 0 = found without supervision (ours)")
     length_tolerance: float = _p(0.1, "share of the video: clusters this close to the longest compete")
     min_track_length: float = _p(0.25, "share of the video a track must cover when n_objects = 0 (ours)")
-    separation: float = _p(40.0, "px: a cluster this close to kept tracks in most of its frames is not a new object (ours)")
+    separation: float = _p(40.0, "px: a cluster this close to kept tracks in most of its frames is not a new "
+                                 "object (ours)")
     threads: int = _p(2, "segmentation threads")
 
     def __post_init__(self) -> None:

@@ -8,7 +8,7 @@ from trap_core.clustering import ObservedPaths, Trajectories
 from trap_core.evaluation import box_precision_recall
 from trap_core.mining._kernels import assign_occurrences, link_occurrences
 from trap_core.pipeline import TrapParams, frame_graph, track
-from trap_core.robust import camera_transforms, rejoin_fragments, steady_boxes, world_speed
+from trap_core.robust import camera_transforms, rejoin_fragments, world_speed
 from trap_core.synthetic import PRESETS, SceneConfig, render
 
 
@@ -133,19 +133,69 @@ def test_border_contacts_of_first_and_last_boxes() -> None:
     assert starts.tolist() == [True, True] and ends.tolist() == [False, False]
 
 
-def test_steady_boxes_shrink_a_merged_box_to_the_usual_size_on_the_path() -> None:
+def _lookalike_pair(n: int = 80) -> tuple[np.ndarray, np.ndarray]:
+    """Two 40x30 look-alikes moving right side by side (b 60 px right of a, 10 px lower); from
+    frame 20 to 39 they touch, and both tracks' boxes are the pair's box."""
+    frames = np.arange(n, dtype=float)
+    a = np.column_stack([100 + 2 * frames, np.full(n, 200.0), np.full(n, 40.0), np.full(n, 30.0)])
+    b = a + [60.0, 10.0, 0.0, 0.0]
+    return a, b
+
+
+def _as_track(track_id: int, frames: np.ndarray, boxes: np.ndarray):
+    from trap_core.clustering import Track
+    return Track(track_id, frames, boxes, np.ones(frames.size), track_id)
+
+
+def test_merged_lookalikes_get_their_own_boxes_back() -> None:
+    from trap_core.robust import separate_groups
+    a, b = _lookalike_pair()
+    merged = slice(20, 40)
+    union = np.column_stack([a[merged, 0], a[merged, 1], b[merged, 0] + 40 - a[merged, 0], np.full(20, 40.0)])
+    seen_a, seen_b = a.copy(), b.copy()
+    seen_a[merged] = seen_b[merged] = union
+    frames = np.arange(80)
+    out = separate_groups([_as_track(1, frames, seen_a), _as_track(2, frames, seen_b)], 80, 640, 480, window=10)
+    np.testing.assert_allclose(out[0].boxes, a)  # left and above: the group box's top-left corner
+    np.testing.assert_allclose(out[1].boxes, b)
+
+
+def test_a_track_that_vanishes_behind_another_is_followed_there() -> None:
+    from trap_core.robust import separate_groups
+    a, b = _lookalike_pair()
+    b[:, 0] -= 40  # b overlaps a by 20 px: the pair's box is 1.5x as wide as one object
+    seen_a, seen_b = a.copy(), b.copy()
+    seen_a[25:60] = np.column_stack([a[25:60, :2], np.full(35, 60.0), np.full(35, 40.0)])  # merged...
+    seen_b[25:30] = seen_a[25:30]  # ...then b is behind a
+    frames = np.arange(80)
+    tracks = [_as_track(1, frames, seen_a), _as_track(2, frames[:30], seen_b[:30])]
+    followed = separate_groups(tracks, 80, 640, 480, window=10, patience=5)[1]
+    assert followed.frames.tolist() == list(range(60))  # while a's box holds two objects
+    np.testing.assert_allclose(followed.boxes, b[:60])  # on its side of the pair
+    assert np.all(followed.score[30:] == 0.5) and np.all(followed.score[:30] == 1.0)
+    alone = separate_groups(tracks, 80, 640, 480, window=10, groups=False)[1]
+    assert alone.frames.tolist() == list(range(30))
+    up = np.array([0.0, 195.0, 0.0, 0.0])  # the same, but at the top border: b left the view
+    tracks = [_as_track(1, frames, seen_a - up), _as_track(2, frames[:30], seen_b[:30] - up)]
+    assert separate_groups(tracks, 80, 640, 480, window=10, patience=5)[1].frames.size == 30
+
+
+def test_oversized_boxes_outside_groups_get_the_usual_size_on_the_path() -> None:
+    from trap_core.robust import separate_groups
     frames = np.arange(60)
     boxes = np.column_stack([2.0 * frames, np.full(60, 50.0), np.full(60, 40.0), np.full(60, 30.0)])
-    merged = (frames >= 20) & (frames < 30)  # touching a look-alike on its right: twice as wide
+    merged = (frames >= 20) & (frames < 30)  # touching an untracked look-alike on its right
     boxes[merged, 2] = 90.0
-    fixed = steady_boxes(frames, boxes, factor=1.5, window=50)
+    fixed = separate_groups([_as_track(1, frames, boxes)], 60, 640, 480, factor=1.5, window=50)[0].boxes
     np.testing.assert_allclose(fixed[~merged], boxes[~merged])
     np.testing.assert_allclose(fixed[merged, 2:], [[40.0, 30.0]] * 10)
     np.testing.assert_allclose(fixed[merged, 0], 2.0 * frames[merged])  # where the object is
     growing = boxes.copy()
     growing[:, 2:] *= np.linspace(1, 3, 60)[:, None]  # steadily coming closer: left alone
-    np.testing.assert_allclose(steady_boxes(frames, growing, factor=1.5, window=5), growing)
-    np.testing.assert_allclose(steady_boxes(frames, boxes, factor=0.0), boxes)
+    steady = separate_groups([_as_track(1, frames, growing)], 60, 640, 480, factor=1.5, window=5)
+    np.testing.assert_allclose(steady[0].boxes, growing)
+    np.testing.assert_allclose(separate_groups([_as_track(1, frames, boxes)], 60, 640, 480, factor=0.0)[0].boxes,
+                               boxes)
 
 
 _BASE = TrapParams(segmentation="colour", eps=20.0, tau=25)
@@ -193,3 +243,27 @@ def test_mining_in_windows_keeps_the_tracks(short_video) -> None:
     for reference in whole.tracks:
         scores = [box_precision_recall(_boxes(t), _boxes(reference)) for t in windowed.tracks]
         assert max(p * r for p, r in scores) > 0.9
+
+
+def test_boxes_grow_over_the_parts_that_move_with_the_track_only() -> None:
+    from trap_core.clustering import Track
+    from trap_core.robust import grow_boxes
+    params = TrapParams(segmentation="colour")
+    graphs, parts = [], []
+    for t in range(11):
+        rgb = np.zeros((120, 200, 3), np.uint8)
+        rgb[:, :] = (40, 40, 40)
+        rgb[60:90, 150:180] = (200, 0, 0)  # a static block of the object's second colour nearby
+        x = 60 + 3 * t
+        rgb[40:60, x:x + 20] = (0, 200, 0)       # the part the track's patterns hold
+        rgb[40:60, x + 20:x + 45] = (200, 0, 0)  # the part they miss
+        graphs.append(frame_graph(rgb, params))
+        parts.append((x, 40, 20, 20))
+    frames = np.arange(11)
+    core = Track(1, frames, np.array(parts, float), np.ones(11), 1)
+    grown = grow_boxes(core, graphs, np.tile(np.eye(3), (11, 1, 1)), lag=5)
+    np.testing.assert_allclose(grown.boxes[5], [75, 40, 45, 20])  # both parts, not the static block
+    np.testing.assert_allclose(grown.boxes[:5], core.boxes[:5])   # no frame 5 before: nothing checked
+    still = Track(1, frames, np.tile([[60.0, 40.0, 20.0, 20.0]], (11, 1)), np.ones(11), 1)
+    np.testing.assert_allclose(grow_boxes(still, graphs, np.tile(np.eye(3), (11, 1, 1)), lag=5).boxes[5],
+                               [60, 40, 20, 20])  # a track that does not move with the parts takes none

@@ -31,11 +31,14 @@ from trap_core.progress import Progress  # noqa: E402
 # The ablation: the paper's method, then each step of the robust one added in turn.
 STEPS = (
     ("paper", dict(method="paper")),
-    ("+ one path per object", dict(method="robust", min_speed=0.0, rejoin=False, core_share=0.0, size_jump=0.0)),
-    ("+ camera motion", dict(method="robust", rejoin=False, core_share=0.0, size_jump=0.0)),
-    ("+ rejoin fragments", dict(method="robust", core_share=0.0, size_jump=0.0)),
-    ("+ core boxes", dict(method="robust", size_jump=0.0)),
-    ("robust (+ steady box size)", dict(method="robust")),
+    ("+ one path per object", dict(method="robust", min_speed=0.0, rejoin=False, core_share=0.0, grow=False,
+                                   size_jump=0.0, groups=False)),
+    ("+ camera motion", dict(method="robust", rejoin=False, core_share=0.0, grow=False, size_jump=0.0, groups=False)),
+    ("+ rejoin fragments", dict(method="robust", core_share=0.0, grow=False, size_jump=0.0, groups=False)),
+    ("+ core boxes", dict(method="robust", grow=False, size_jump=0.0, groups=False)),
+    ("+ grown boxes", dict(method="robust", size_jump=0.0, groups=False)),
+    ("+ steady box size", dict(method="robust", groups=False)),
+    ("robust (+ where objects meet)", dict(method="robust")),
 )
 
 

@@ -56,8 +56,13 @@ class TrapParams:
     rejoin_similarity: float = _p(0.3, "robust: share of the smaller fragment's structures the other must have to "
                                        "rejoin them")
     core_share: float = _p(0.8, "robust: track box from regions in at least this share of the occurrences; 0 = all")
-    size_jump: float = _p(1.5, "robust: a track box this many times wider or taller than its running median (4 tau "
-                               "frames each side) holds more than the object: it is given the usual size; 0 = off")
+    size_jump: float = _p(1.5, "robust: a track box this many times wider or taller than its usual size (running "
+                               "median over 4 tau frames each side where it is alone) holds more than the object: it "
+                               "is given the usual size; 0 = off")
+    grow: bool = _p(True, "robust: track boxes grow over nearby regions that move with the track, tau/5 frames before "
+                          "and after (objects the segmentation splits into parts)")
+    groups: bool = _p(True, "robust: where tracks' boxes merge, each gets its usual size at its side of the pair, and a "
+                            "track that vanishes inside another's box continues there while it holds two objects")
     linkage: str = _p("average", "hierarchical clustering linkage: average, single, complete, weighted (ours)")
     ignore_top: float = _p(0.1, "share of the top levels of the hierarchy the lifetime cut ignores")
     n_objects: int = _p(0, "objects to track; 0 = found without supervision (ours)")

@@ -1,7 +1,6 @@
 """From plane graphs to tracks: mining, trajectories, clustering, lifetime cut, selection."""
 from __future__ import annotations
 
-import dataclasses
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -14,7 +13,8 @@ from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
-from trap_core.robust import border_contacts, camera_transforms, rejoin_fragments, steady_boxes, world_speed
+from trap_core.robust import (border_contacts, camera_transforms, grow_boxes, rejoin_fragments, separate_groups,
+                              world_speed)
 
 
 @dataclass
@@ -64,8 +64,9 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     start = time.perf_counter()
     observed = observed_paths(mined)  # each pattern's mean position per frame: camera motion and trajectories
     clustered = np.arange(mined.n_st)
+    transforms = camera_transforms(observed, n_frames) if robust and (params.min_speed > 0 or params.grow) else None
     if robust and params.min_speed > 0:
-        speed = world_speed(observed, camera_transforms(observed, n_frames), mined.n_st, max(1, params.tau // 2))
+        speed = world_speed(observed, transforms, mined.n_st, max(1, params.tau // 2))
         clustered = np.flatnonzero(speed >= params.min_speed * width / fps)
     seconds["camera"] = time.perf_counter() - start
     start = time.perf_counter()
@@ -87,8 +88,10 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     all_labels[clustered] = labels
     tracks = [build_track(mined, all_labels, cluster, track_id, graphs, params.core_share if robust else 0.0)
               for track_id, cluster in enumerate(selected, start=1)]
-    if robust and params.size_jump:
-        tracks = [dataclasses.replace(t, boxes=steady_boxes(t.frames, t.boxes, params.size_jump, 4 * params.tau))
-                  for t in tracks]
+    if robust and params.grow:
+        tracks = [grow_boxes(t, graphs, transforms, lag=max(1, params.tau // 5)) for t in tracks]
+    if robust and (params.size_jump or params.groups):
+        tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
+                                 groups=params.groups, patience=params.tau)
     seconds["clustering"] = time.perf_counter() - start
     return TrackingResult(mined, sub_paths, clustered, hierarchy, summary, selected, tracks, all_labels, seconds)

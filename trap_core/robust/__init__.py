@@ -1,7 +1,9 @@
-"""Beyond the paper: camera-motion compensation, object/background split, fragment rejoining."""
+"""Beyond the paper: camera-motion compensation, object/background split, fragment rejoining,
+track boxes where objects meet."""
 
-from trap_core.robust.box_size import steady_boxes
 from trap_core.robust.camera import camera_transforms, world_speed
+from trap_core.robust.extent import grow_boxes
+from trap_core.robust.groups import separate_groups
 from trap_core.robust.rejoin import border_contacts, rejoin_fragments
 
-__all__ = ["border_contacts", "camera_transforms", "rejoin_fragments", "steady_boxes", "world_speed"]
+__all__ = ["border_contacts", "camera_transforms", "grow_boxes", "rejoin_fragments", "separate_groups", "world_speed"]

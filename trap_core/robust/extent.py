@@ -1,0 +1,97 @@
+"""Track boxes grown over the regions that move with the object (ours).
+
+A track's box surrounds the regions of its frequent patterns. Where the segmentation splits an
+object differently from frame to frame (noise, textured objects), only a few of its parts are in
+frequent patterns and the box covers those parts, not the object. Around the box, a region is
+taken as part of the object when it moves with it: ``lag`` frames before and ``lag`` frames after,
+the track's displacement brings it onto a region of the same label and similar area (within
+``tolerance`` times the square root of its area), and the camera's motion does not bring it
+anywhere nearly as close (background regions move with the camera). Both directions must agree,
+so a chance look-alike region seldom passes.
+"""
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+
+import numpy as np
+
+from trap_core.clustering import Track
+from trap_core.rag import PlaneGraph
+
+MAX_AREA = 4.0  # regions larger than this times the box are background, whatever their motion
+
+
+def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarray, lag: int = 5,
+               reach: float = 0.5, tolerance: float = 0.3) -> Track:
+    """The track with each box grown over the nearby regions that move with it.
+
+    Parameters
+    ----------
+    track : Track
+    graphs : sequence of PlaneGraph
+        Plane graph of every frame of the video.
+    transforms : (n_frames, 3, 3) array
+        Camera motion: ``transforms[t]`` maps frame-0 coordinates to frame ``t``
+        (:func:`trap_core.robust.camera_transforms`).
+    lag : int
+        Frames before and after a frame where a region's motion is checked.
+    reach : float
+        Regions that touch the box grown by this share of its size on each side are candidates.
+    tolerance : float
+        A region is found again if a region of the same label and area within a factor 2 lies
+        within ``tolerance`` times the square root of its area (plus 1 px) of where a motion
+        puts it.
+
+    Returns
+    -------
+    Track
+    """
+    slot = np.full(len(graphs), -1)
+    slot[track.frames] = np.arange(len(track))
+    boxes = track.boxes.astype(float).copy()
+    for i, frame in enumerate(track.frames.tolist()):
+        moving = None
+        for other in (frame - lag, frame + lag):
+            j = slot[other] if 0 <= other < len(graphs) else -1
+            if j < 0:
+                moving = None
+                break
+            found = _moving_regions(graphs[frame], graphs[other], track.boxes[i], track.boxes[j],
+                                    transforms[other] @ np.linalg.inv(transforms[frame]), reach, tolerance)
+            moving = found if moving is None else np.intersect1d(moving, found)
+        if moving is not None and moving.size:
+            x, y, w, h = boxes[i]
+            parts = graphs[frame].bbox[moving]
+            x0, y0 = min(x, parts[:, 0].min()), min(y, parts[:, 1].min())
+            x1, y1 = max(x + w - 1, parts[:, 2].max()), max(y + h - 1, parts[:, 3].max())
+            boxes[i] = (x0, y0, x1 - x0 + 1, y1 - y0 + 1)
+    return dataclasses.replace(track, boxes=boxes)
+
+
+def _moving_regions(graph: PlaneGraph, other: PlaneGraph, box: np.ndarray, other_box: np.ndarray,
+                    camera: np.ndarray, reach: float, tolerance: float) -> np.ndarray:
+    """Regions of ``graph`` near ``box`` that the track's displacement to ``other`` (a frame
+    whose track box is ``other_box``) puts on a look-alike region and the camera's (``camera``:
+    this frame's coordinates to the other's) does not."""
+    x, y, w, h = box
+    bbox = graph.bbox
+    near = np.flatnonzero((bbox[:, 2] >= x - reach * w) & (bbox[:, 3] >= y - reach * h)
+                          & (bbox[:, 0] <= x + w + reach * w) & (bbox[:, 1] <= y + h + reach * h)
+                          & (graph.area <= MAX_AREA * w * h))
+    if near.size == 0:
+        return near
+    centre = graph.centroid[near].astype(float)
+    area = graph.area[near].astype(float)
+    shift = other_box[:2] + other_box[2:] / 2 - (box[:2] + box[2:] / 2)
+    with_camera = np.column_stack([centre, np.ones(near.size)]) @ camera.T
+    with_camera = with_camera[:, :2] / with_camera[:, 2:3]
+    alike = ((other.label[None, :] == graph.label[near][:, None])
+             & (other.area[None, :] < 2 * area[:, None]) & (other.area[None, :] > area[:, None] / 2))
+
+    def nearest(places: np.ndarray) -> np.ndarray:
+        distance = np.linalg.norm(other.centroid[None, :, :] - places[:, None, :], axis=2)
+        return np.where(alike, distance, np.inf).min(axis=1)
+
+    with_track = nearest(centre + shift)
+    return near[(with_track <= tolerance * np.sqrt(area) + 1) & (with_track < nearest(with_camera) / 2)]

@@ -1,0 +1,223 @@
+"""Track boxes where objects meet: merged boxes split, occluded objects followed (ours).
+
+Where two look-alike objects touch or overlap, their same-coloured regions become one region
+and every pattern on either spans both, so both tracks get the box of the pair (a *group*);
+where one object passes behind another, its patterns vanish and its track ends inside the
+other's box. Blob trackers meet the same merges and splits; here they are solved with what the
+tracks themselves know:
+
+* **usual size**: a track's running median width and height over the frames where it is alone
+  (its box does not overlap another track's), so a merge of any length does not move it;
+* **side**: in a group, each object keeps the side of the pair it was on when last seen apart
+  (left or right, above or below), interpolated towards the side it is on when next seen apart;
+  its box is its usual size, at that side of the group box (which does hold both objects);
+* **occluded**: a track that ends (or pauses) inside the view while in a group continues in the
+  group box while that box stays larger than its other member (so it still holds two objects;
+  shorter dips than ``patience`` frames do not end it), or through the whole pause when the track comes back from that same box. Such frames get half
+  the track's lowest observed confidence;
+* **oversized** boxes outside groups (``factor`` times the usual size) get the usual size,
+  centred where the neighbouring normal frames put the object, inside the observed box.
+"""
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+
+import numpy as np
+
+from trap_core.clustering import Track
+
+GROUPED = 0.5  # share of the smaller box inside the other: the two boxes hold the same regions
+HOLDS_MORE = 1.1  # a box this much wider or taller than its usual size holds more than its object
+
+
+def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height: float, factor: float = 1.5,
+                    window: int = 100, border: float = 0.25, groups: bool = True,
+                    patience: int = 25) -> list[Track]:
+    """Tracks with merged boxes split, oversized boxes shrunk and occluded objects followed.
+
+    Parameters
+    ----------
+    tracks : sequence of Track
+        Boxes ``(x, y, w, h)`` as built from the regions of each track's patterns.
+    n_frames, width, height :
+        Video length and frame size.
+    factor : float
+        Outside groups, a box wider or taller than ``factor`` times the usual size is oversized;
+        0 = leave boxes outside groups alone.
+    window : int
+        Frames on each side of the running median of the usual size.
+    border : float
+        A track whose last box is within this share of its size from the image border left the
+        view: it is not followed as occluded.
+    groups : bool
+        Split group boxes and follow occluded tracks; False: every track is taken as alone.
+    patience : int
+        Frames the group box may look like one object (a hidden object, the pair aligned) before
+        an occluded track that did not come back ends.
+
+    Returns
+    -------
+    list of Track
+    """
+    if not tracks:
+        return []
+    boxes = np.full((len(tracks), n_frames, 4), np.nan)
+    for slot, t in enumerate(tracks):
+        boxes[slot, t.frames] = t.boxes
+    partner = _partners(boxes) if groups else np.full(boxes.shape[:2], -1)
+    inferred = np.zeros(boxes.shape[:2], dtype=bool)
+    if groups:
+        inferred = _follow_occluded(boxes, partner, width, height, border, window, patience)
+        if inferred.any():
+            partner = _partners(boxes)
+    usual = _usual_sizes(boxes, partner < 0, window)
+    placed = boxes.copy()
+    for slot in range(len(tracks)):
+        _split(placed, boxes, usual, partner, slot)
+        if factor > 0:
+            _shrink_oversized(placed[slot], usual[slot], partner[slot] < 0, factor)
+    out = []
+    for slot, t in enumerate(tracks):
+        frames = np.flatnonzero(~np.isnan(placed[slot, :, 0]))
+        score = np.full(n_frames, np.nan)
+        score[t.frames] = t.score
+        score[inferred[slot]] = 0.5 * float(t.score.min())
+        out.append(dataclasses.replace(t, frames=frames, boxes=placed[slot, frames], score=score[frames]))
+    return out
+
+
+def _overlap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Per frame: the share of the smaller of boxes ``a``, ``b`` (F, 4) that lies in the other (NaN: absent)."""
+    ix = np.minimum(a[:, 0] + a[:, 2], b[:, 0] + b[:, 2]) - np.maximum(a[:, 0], b[:, 0])
+    iy = np.minimum(a[:, 1] + a[:, 3], b[:, 1] + b[:, 3]) - np.maximum(a[:, 1], b[:, 1])
+    smaller = np.minimum(a[:, 2] * a[:, 3], b[:, 2] * b[:, 3])
+    with np.errstate(invalid="ignore"):
+        return np.nan_to_num(np.clip(ix, 0, None) * np.clip(iy, 0, None) / smaller)
+
+
+def _partners(boxes: np.ndarray) -> np.ndarray:
+    """(T, F): the track each track's box is grouped with in each frame (most overlap), -1 if none."""
+    n_tracks, n_frames = boxes.shape[:2]
+    best = np.zeros((n_tracks, n_frames))
+    partner = np.full((n_tracks, n_frames), -1)
+    for a in range(n_tracks):
+        for b in range(a + 1, n_tracks):
+            shared = _overlap(boxes[a], boxes[b])
+            for me, other in ((a, b), (b, a)):
+                better = (shared > GROUPED) & (shared > best[me])
+                best[me, better] = shared[better]
+                partner[me, better] = other
+    return partner
+
+
+def _usual_sizes(boxes: np.ndarray, alone: np.ndarray, window: int) -> np.ndarray:
+    """(T, F, 2): running median width and height over the frames each track is alone in
+    (all its frames if it never is), interpolated between them."""
+    usual = np.full(boxes.shape[:2] + (2,), np.nan)
+    for slot in range(boxes.shape[0]):
+        present = ~np.isnan(boxes[slot, :, 0])
+        known = np.flatnonzero(present & alone[slot])
+        if known.size == 0:
+            known = np.flatnonzero(present)
+        if known.size == 0:
+            continue
+        lo = np.searchsorted(known, known - window)
+        hi = np.searchsorted(known, known + window, side="right")
+        sizes = boxes[slot, known, 2:4]
+        medians = np.array([np.median(sizes[a:b], axis=0) for a, b in zip(lo, hi)])
+        frames = np.arange(boxes.shape[1])
+        for axis in (0, 1):
+            usual[slot, :, axis] = np.interp(frames, known, medians[:, axis])
+    return usual
+
+
+def _follow_occluded(boxes: np.ndarray, partner: np.ndarray, width: float, height: float, border: float,
+                     window: int, patience: int) -> np.ndarray:
+    """Give tracks that vanish inside a group box that box while it still holds them (in place);
+    returns the (T, F) frames so filled. Whether the box holds more than its other member is
+    judged against that member's median size when alone in the ``window`` frames before the
+    group formed (the frames after may all be merged)."""
+    n_tracks, n_frames = boxes.shape[:2]
+    inferred = np.zeros((n_tracks, n_frames), dtype=bool)
+    observed = ~np.isnan(boxes[..., 0])
+    for slot in range(n_tracks):
+        present = np.flatnonzero(observed[slot])
+        if present.size == 0:
+            continue
+        ends = present[np.flatnonzero(np.diff(np.append(present, n_frames)) > 1)]
+        for last in ends:
+            other = partner[slot, last]
+            if other < 0 or _at_border(boxes[slot, last], width, height, border):
+                continue
+            formed = last - _lasting(partner[slot, last::-1] == other, 1)
+            before = np.arange(max(formed - window, 0), formed + 1)
+            before = before[observed[other, before] & (partner[other, before] < 0)]
+            if before.size == 0:
+                continue
+            alone_size = np.median(boxes[other, before, 2:4], axis=0)
+            later = present[present > last]
+            back = int(later[0]) if later.size else n_frames
+            gap = np.arange(last + 1, back)
+            with_other = observed[other, gap]
+            if back < n_frames and partner[slot, back] == other and with_other.all():
+                fill = gap  # came back out of the same box: it was there all along
+            else:
+                big = np.any(boxes[other, gap, 2:4] > HOLDS_MORE * alone_size, axis=1) & with_other
+                fill = gap[:_lasting(big, patience)]
+            boxes[slot, fill] = boxes[other, fill]
+            inferred[slot, fill] = True
+    return inferred
+
+
+def _lasting(flags: np.ndarray, patience: int) -> int:
+    """Length of the leading stretch of ``flags`` that no run of ``patience`` or more False
+    (or a False run reaching the end) interrupts, without its trailing False."""
+    false_runs = np.flatnonzero(np.diff(np.concatenate([[1], flags.astype(np.int8), [1]])))
+    for start, stop in zip(false_runs[::2], false_runs[1::2]):
+        if stop - start >= patience or stop == flags.size:
+            return int(start)
+    return int(flags.size)
+
+
+def _at_border(box: np.ndarray, width: float, height: float, border: float) -> bool:
+    x, y, w, h = box
+    return bool(x <= border * w or y <= border * h or x + w >= width - border * w or y + h >= height - border * h)
+
+
+def _split(placed: np.ndarray, boxes: np.ndarray, usual: np.ndarray, partner: np.ndarray, slot: int) -> None:
+    """In the frames where track ``slot`` is grouped, its usual-size box at its side of the group box."""
+    for other in np.unique(partner[slot][partner[slot] >= 0]):
+        grouped = np.flatnonzero(partner[slot] == other)
+        apart = np.flatnonzero(~np.isnan(boxes[slot, :, 0]) & ~np.isnan(boxes[other, :, 0])
+                               & (_overlap(boxes[slot], boxes[other]) <= GROUPED))
+        box = boxes[slot, grouped]
+        for axis in (0, 1):
+            size = np.minimum(usual[slot, grouped, axis], box[:, 2 + axis])
+            if apart.size:
+                mine = boxes[slot, apart, axis] + boxes[slot, apart, 2 + axis] / 2
+                theirs = boxes[other, apart, axis] + boxes[other, apart, 2 + axis] / 2
+                side = np.interp(grouped, apart, (np.sign(mine - theirs) + 1) / 2)
+            else:
+                side = np.full(grouped.size, 0.5)
+            placed[slot, grouped, axis] = box[:, axis] + side * (box[:, 2 + axis] - size)
+            placed[slot, grouped, 2 + axis] = size
+
+
+def _shrink_oversized(placed: np.ndarray, usual: np.ndarray, alone: np.ndarray, factor: float) -> None:
+    """Outside groups, boxes ``factor`` times their usual size get that size, centred on the path
+    of the normal frames around them and kept inside the observed box (in place)."""
+    present = ~np.isnan(placed[:, 0])
+    oversized = present & alone & np.any(placed[:, 2:4] > factor * usual, axis=1)
+    normal = np.flatnonzero(present & ~oversized)
+    odd = np.flatnonzero(oversized)
+    if odd.size == 0 or normal.size == 0:
+        return
+    for axis in (0, 1):
+        centre = placed[normal, axis] + placed[normal, 2 + axis] / 2
+        guess = np.interp(odd, normal, centre)
+        size = usual[odd, axis]
+        start = placed[odd, axis]
+        stop = start + placed[odd, 2 + axis] - size
+        placed[odd, axis] = np.clip(guess - size / 2, start, stop)
+        placed[odd, 2 + axis] = size

@@ -160,6 +160,26 @@ def test_merged_lookalikes_get_their_own_boxes_back() -> None:
     np.testing.assert_allclose(out[1].boxes, b)
 
 
+def test_in_a_group_each_object_is_placed_where_its_patterns_are() -> None:
+    from trap_core.clustering import Track
+    from trap_core.robust import separate_groups
+    a, b = _lookalike_pair()
+    b[:, 0] -= 50  # 10 px overlap apart
+    b[40:, 0] -= np.arange(40) * 2.5  # b slows down inside the group: the two cross
+    union = np.column_stack([np.minimum(a[:, 0], b[:, 0]), np.minimum(a[:, 1], b[:, 1]),
+                             np.abs(a[:, 0] - b[:, 0]) + 40, np.full(80, 40.0)])
+    merged = slice(20, 80)  # together to the end: never seen apart again
+    seen_a, seen_b = a.copy(), b.copy()
+    seen_a[merged] = seen_b[merged] = union[merged]
+    frames = np.arange(80)
+    patterns_a = a[:, :2] + [25.0, 15.0]  # the patterns' mean sits 5 px right of the object's centre
+    patterns_b = b[:, :2] + [25.0, 15.0]
+    tracks = [Track(1, frames, seen_a, np.ones(80), 1, patterns_a), Track(2, frames, seen_b, np.ones(80), 2, patterns_b)]
+    out = separate_groups(tracks, 80, 640, 480, window=10)
+    np.testing.assert_allclose(out[0].boxes, a)
+    np.testing.assert_allclose(out[1].boxes, b)  # right of a before the crossing, left after
+
+
 def test_a_track_that_vanishes_behind_another_is_followed_there() -> None:
     from trap_core.robust import separate_groups
     a, b = _lookalike_pair()
@@ -267,3 +287,39 @@ def test_boxes_grow_over_the_parts_that_move_with_the_track_only() -> None:
     still = Track(1, frames, np.tile([[60.0, 40.0, 20.0, 20.0]], (11, 1)), np.ones(11), 1)
     np.testing.assert_allclose(grow_boxes(still, graphs, np.tile(np.eye(3), (11, 1, 1)), lag=5).boxes[5],
                                [60, 40, 20, 20])  # a track that does not move with the parts takes none
+
+
+def test_a_cluster_on_two_objects_at_once_is_split_down_the_hierarchy() -> None:
+    from scipy.cluster.hierarchy import linkage
+    from trap_core.clustering import Hierarchy, pattern_distances
+    from trap_core.robust import split_mixed
+    frames = np.arange(50.0)[:, None]
+    walk = np.hstack([3 * frames, frames])
+    # two parts of object 1, two of object 2 (100 px below), all 40 px across
+    pieces = [walk, walk + [12, 0], walk + [0, 100], walk + [12, 100]]
+    paths = Trajectories.pack([0, 0, 0, 0], pieces)
+    distances = pattern_distances(paths)
+    matrix = linkage(distances, method="average")
+    one_cluster = Hierarchy(4, matrix, 1, np.zeros(4, dtype=np.int64))  # a cut that took everything
+    labels = split_mixed(one_cluster, distances, paths, np.full(4, 40.0))
+    assert labels[0] == labels[1] and labels[2] == labels[3] and labels[0] != labels[2]
+    assert len(set(split_mixed(one_cluster, distances, paths, np.full(4, 250.0)).tolist())) == 1  # large objects
+    later = Trajectories.pack([0, 0, 100, 100], pieces)  # object 2's patterns come after: nothing at once
+    assert len(set(split_mixed(one_cluster, pattern_distances(later), later, np.full(4, 40.0)).tolist())) == 1
+
+
+def test_a_cluster_of_jittering_patterns_is_still_and_a_moving_one_is_not() -> None:
+    from trap_core.clustering import summarise
+    from trap_core.robust import cluster_world_speed
+    rng = np.random.default_rng(0)
+    frames = np.arange(100.0)[:, None]
+    jitter = [np.array([300.0, 200.0]) + rng.normal(0, 4, (100, 2)) for _ in range(3)]  # noisy regions, still
+    moving = [np.hstack([2 * frames, frames]) + [k * 10.0, 0.0] for k in range(2)]
+    paths = Trajectories.pack([0] * 5, jitter + moving)
+    summary = summarise(np.array([0, 0, 0, 1, 1]), paths, np.ones(5), 100)
+    speed = cluster_world_speed(summary, np.tile(np.eye(3), (100, 1, 1)), lag=25)
+    assert speed[0] < 0.3 and abs(speed[1] - np.hypot(2, 1)) < 1e-6
+    panning = np.tile(np.eye(3), (100, 1, 1))  # the camera pans: the world moves by (2, 1) px a frame in the image
+    panning[:, 0, 2], panning[:, 1, 2] = 2 * np.arange(100), np.arange(100)
+    still, moves = cluster_world_speed(summary, panning, lag=25)
+    assert still > 2.0 and moves < 1e-6  # the first moves against the world, the second with it

@@ -54,8 +54,11 @@ def _longest(summary: ClusterSummary, candidates: np.ndarray, tolerance_frames: 
 
 def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | None = None,
                     tolerance: float = 0.1, min_length: float = 0.25, separation: float = 40.0,
-                    max_objects: int = 20) -> list[int]:
+                    max_objects: int = 20, eligible: np.ndarray | None = None) -> list[int]:
     """Clusters that are tracks, in order of selection.
+
+    ``eligible``: per cluster, whether it may be a track at all (ours: clusters that move
+    relative to the camera); by default every cluster.
 
     With ``n_objects``: the ``n_objects`` longest clusters, one after another (the paper).
     Without (ours, unsupervised): keep taking the next longest cluster while it covers at
@@ -66,6 +69,8 @@ def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | Non
     another.
     """
     remaining = np.arange(summary.length.size)
+    if eligible is not None:
+        remaining = remaining[eligible]
     chosen: list[int] = []
     limit = n_objects if n_objects is not None else max_objects
     while remaining.size and len(chosen) < limit:

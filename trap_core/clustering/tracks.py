@@ -12,13 +12,18 @@ from trap_core.rag import PlaneGraph
 
 @dataclass(frozen=True)
 class Track:
-    """One object: ``boxes[i] = (x, y, w, h)`` in frame ``frames[i]``, with a confidence in (0, 1]."""
+    """One object: ``boxes[i] = (x, y, w, h)`` in frame ``frames[i]``, with a confidence in (0, 1].
+
+    ``points[i]``: mean position of the track's pattern occurrences in that frame (NaN where none,
+    as in frames where the object is only inferred); None when not known.
+    """
 
     track_id: int
     frames: np.ndarray
     boxes: np.ndarray
     score: np.ndarray
     cluster: int
+    points: np.ndarray | None = None
 
     def __len__(self) -> int:
         return int(self.frames.size)
@@ -57,7 +62,10 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     seen = np.unique(np.column_stack([inverse, owner]), axis=0)[:, 0]
     per_frame = np.bincount(seen, minlength=known.size).astype(float)
     score = per_frame / per_frame.max() if per_frame.size else per_frame
-    return Track(track_id, known, np.column_stack([x0, y0, x1 - x0 + 1, y1 - y0 + 1]), score, cluster)
+    occurrences = np.bincount(inverse, minlength=known.size)[:, None]
+    points = np.column_stack([np.bincount(inverse, weights=result.occ_position[rows, axis], minlength=known.size)
+                              for axis in (0, 1)]) / np.maximum(occurrences, 1)
+    return Track(track_id, known, np.column_stack([x0, y0, x1 - x0 + 1, y1 - y0 + 1]), score, cluster, points)
 
 
 def _core_box(graph: PlaneGraph, face_sets: np.ndarray, share: float) -> tuple[float, float, float, float]:

@@ -51,7 +51,10 @@ class TrapParams:
     method: str = _p("robust", "paper (TRAP as published) or robust (ours: README 'Method')")
     one_path: bool = _p(True, "robust: link each pattern's occurrences one to one (one object, one path)")
     min_speed: float = _p(0.03, "robust: image widths per second, relative to the camera and over tau/2 frames, "
-                                "below which patterns are background (0.03 = 0.75 px/frame at 640 px, 25 Hz); 0 = off")
+                                "below which patterns (and, over tau frames, clusters) are background (0.03 = 0.75 "
+                                "px/frame at 640 px, 25 Hz); 0 = off")
+    one_object: bool = _p(True, "robust: a cluster of the cut whose patterns lie on two objects at once (on average "
+                                "further apart than half their sizes) is split down the hierarchy")
     rejoin: bool = _p(True, "robust: rejoin fragments of one object across occlusions and exits")
     rejoin_similarity: float = _p(0.3, "robust: share of the smaller fragment's structures the other must have to "
                                        "rejoin them")

@@ -13,8 +13,8 @@ from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
-from trap_core.robust import (border_contacts, camera_transforms, grow_boxes, rejoin_fragments, separate_groups,
-                              world_speed)
+from trap_core.robust import (border_contacts, camera_transforms, cluster_world_speed, grow_boxes, pattern_sizes,
+                              rejoin_fragments, separate_groups, split_mixed, world_speed)
 
 
 @dataclass
@@ -76,14 +76,19 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     start = time.perf_counter()
     hierarchy = cluster_patterns(distances, len(sub_paths), params.linkage, params.ignore_top)
     labels = hierarchy.labels
+    if robust and params.one_object:
+        labels = split_mixed(hierarchy, distances, sub_paths, pattern_sizes(mined, clustered))
     if robust and params.rejoin:
         labels = rejoin_fragments(labels, sub_paths, mined.st_pattern[clustered], n_frames,
                                   params.rejoin_similarity, params.tau,
                                   border_contacts(mined, clustered, width, height))
     occurrences = np.diff(mined.st_offsets)[clustered]
     summary = summarise(labels, sub_paths, occurrences, n_frames)
+    moving = None
+    if robust and params.min_speed > 0:  # the whole cluster too: averaged, noise no longer passes for motion
+        moving = cluster_world_speed(summary, transforms, params.tau) >= params.min_speed * width / fps
     selected = select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
-                               params.min_track_length, params.separation)
+                               params.min_track_length, params.separation, eligible=moving)
     all_labels = np.full(mined.n_st, -1, dtype=np.int64)
     all_labels[clustered] = labels
     tracks = [build_track(mined, all_labels, cluster, track_id, graphs, params.core_share if robust else 0.0)

@@ -1,9 +1,11 @@
 """Beyond the paper: camera-motion compensation, object/background split, fragment rejoining,
 track boxes where objects meet."""
 
-from trap_core.robust.camera import camera_transforms, world_speed
+from trap_core.robust.camera import camera_transforms, cluster_world_speed, world_speed
 from trap_core.robust.extent import grow_boxes
 from trap_core.robust.groups import separate_groups
+from trap_core.robust.mixed import pattern_sizes, split_mixed
 from trap_core.robust.rejoin import border_contacts, rejoin_fragments
 
-__all__ = ["border_contacts", "camera_transforms", "grow_boxes", "rejoin_fragments", "separate_groups", "world_speed"]
+__all__ = ["border_contacts", "camera_transforms", "cluster_world_speed", "grow_boxes", "pattern_sizes", "rejoin_fragments", "separate_groups",
+           "split_mixed", "world_speed"]

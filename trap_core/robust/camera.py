@@ -12,7 +12,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
-from trap_core.clustering import ObservedPaths
+from trap_core.clustering import ClusterSummary, ObservedPaths
 
 
 def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:
@@ -56,6 +56,20 @@ def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, l
         if hi > lo:
             _chunk_speed(paths.pattern[lo:hi], paths.frame[lo:hi], paths.position[lo:hi], inverse, lag, speed)
     return speed
+
+
+def cluster_world_speed(summary: ClusterSummary, transforms: np.ndarray, lag: int) -> np.ndarray:
+    """(C,) :func:`world_speed` of each cluster's mean path over the frames its patterns cover.
+
+    Averaged over its patterns, a cluster's path jitters less than any one pattern's, so a chain
+    of background patterns that each passed the speed threshold on noise is seen still here.
+    """
+    frames = [np.flatnonzero(covered) for covered in summary.covered]
+    paths = summary.paths
+    observed = ObservedPaths(np.repeat(np.arange(len(frames)), [f.size for f in frames]),
+                             np.concatenate(frames),
+                             np.concatenate([paths.of(c)[f - paths.start[c]] for c, f in enumerate(frames)]))
+    return world_speed(observed, transforms, len(frames), lag)
 
 
 def _chunk_speed(pattern: np.ndarray, frame: np.ndarray, position: np.ndarray, inverse: np.ndarray, lag: int,

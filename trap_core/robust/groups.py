@@ -8,9 +8,12 @@ tracks themselves know:
 
 * **usual size**: a track's running median width and height over the frames where it is alone
   (its box does not overlap another track's), so a merge of any length does not move it;
-* **side**: in a group, each object keeps the side of the pair it was on when last seen apart
-  (left or right, above or below), interpolated towards the side it is on when next seen apart;
-  its box is its usual size, at that side of the group box (which does hold both objects);
+* **place**: in a group, each object's box has its usual size, inside the group box (which does
+  hold both objects), centred where its own patterns are (their mean position, less its usual
+  offset from the box centre when alone). An object without patterns there (hidden) takes the
+  side of the group box away from its partner's, or, if neither has patterns, the side of the
+  pair it was on when last seen apart (left or right, above or below), interpolated towards the
+  side it is on when next seen apart;
 * **occluded**: a track that ends (or pauses) inside the view while in a group continues in the
   group box while that box stays larger than its other member (so it still holds two objects;
   shorter dips than ``patience`` frames do not end it), or through the whole pause when the track comes back from that same box. Such frames get half
@@ -63,18 +66,24 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
     if not tracks:
         return []
     boxes = np.full((len(tracks), n_frames, 4), np.nan)
+    points = np.full((len(tracks), n_frames, 2), np.nan)
     for slot, t in enumerate(tracks):
         boxes[slot, t.frames] = t.boxes
+        if t.points is not None:
+            points[slot, t.frames] = t.points
     partner = _partners(boxes) if groups else np.full(boxes.shape[:2], -1)
     inferred = np.zeros(boxes.shape[:2], dtype=bool)
     if groups:
         inferred = _follow_occluded(boxes, partner, width, height, border, window, patience)
         if inferred.any():
             partner = _partners(boxes)
-    usual = _usual_sizes(boxes, partner < 0, window)
+    alone = partner < 0
+    usual = _running_median(boxes[..., 2:4], alone, window)
+    offset = _running_median(points - boxes[..., :2] - boxes[..., 2:4] / 2, alone, window)
+    centres = points - offset
     placed = boxes.copy()
     for slot in range(len(tracks)):
-        _split(placed, boxes, usual, partner, slot)
+        _split(placed, boxes, usual, centres, partner, slot)
         if factor > 0:
             _shrink_oversized(placed[slot], usual[slot], partner[slot] < 0, factor)
     out = []
@@ -83,7 +92,8 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
         score = np.full(n_frames, np.nan)
         score[t.frames] = t.score
         score[inferred[slot]] = 0.5 * float(t.score.min())
-        out.append(dataclasses.replace(t, frames=frames, boxes=placed[slot, frames], score=score[frames]))
+        out.append(dataclasses.replace(t, frames=frames, boxes=placed[slot, frames], score=score[frames],
+                                       points=points[slot, frames]))
     return out
 
 
@@ -111,25 +121,25 @@ def _partners(boxes: np.ndarray) -> np.ndarray:
     return partner
 
 
-def _usual_sizes(boxes: np.ndarray, alone: np.ndarray, window: int) -> np.ndarray:
-    """(T, F, 2): running median width and height over the frames each track is alone in
-    (all its frames if it never is), interpolated between them."""
-    usual = np.full(boxes.shape[:2] + (2,), np.nan)
-    for slot in range(boxes.shape[0]):
-        present = ~np.isnan(boxes[slot, :, 0])
-        known = np.flatnonzero(present & alone[slot])
-        if known.size == 0:
-            known = np.flatnonzero(present)
-        if known.size == 0:
+def _running_median(values: np.ndarray, alone: np.ndarray, window: int) -> np.ndarray:
+    """(T, F, k): per track, the running median of ``values`` (T, F, k; NaN where unknown) over
+    the frames it is alone in (all its frames if it never is), interpolated between them."""
+    out = np.full(values.shape, np.nan)
+    for slot in range(values.shape[0]):
+        known = ~np.isnan(values[slot]).any(axis=1)
+        frames = np.flatnonzero(known & alone[slot])
+        if frames.size == 0:
+            frames = np.flatnonzero(known)
+        if frames.size == 0:
             continue
-        lo = np.searchsorted(known, known - window)
-        hi = np.searchsorted(known, known + window, side="right")
-        sizes = boxes[slot, known, 2:4]
-        medians = np.array([np.median(sizes[a:b], axis=0) for a, b in zip(lo, hi)])
-        frames = np.arange(boxes.shape[1])
-        for axis in (0, 1):
-            usual[slot, :, axis] = np.interp(frames, known, medians[:, axis])
-    return usual
+        lo = np.searchsorted(frames, frames - window)
+        hi = np.searchsorted(frames, frames + window, side="right")
+        samples = values[slot, frames]
+        medians = np.array([np.median(samples[a:b], axis=0) for a, b in zip(lo, hi)])
+        everywhere = np.arange(values.shape[1])
+        for axis in range(values.shape[2]):
+            out[slot, :, axis] = np.interp(everywhere, frames, medians[:, axis])
+    return out
 
 
 def _follow_occluded(boxes: np.ndarray, partner: np.ndarray, width: float, height: float, border: float,
@@ -185,22 +195,35 @@ def _at_border(box: np.ndarray, width: float, height: float, border: float) -> b
     return bool(x <= border * w or y <= border * h or x + w >= width - border * w or y + h >= height - border * h)
 
 
-def _split(placed: np.ndarray, boxes: np.ndarray, usual: np.ndarray, partner: np.ndarray, slot: int) -> None:
-    """In the frames where track ``slot`` is grouped, its usual-size box at its side of the group box."""
+def _split(placed: np.ndarray, boxes: np.ndarray, usual: np.ndarray, centres: np.ndarray, partner: np.ndarray,
+           slot: int) -> None:
+    """In the frames where track ``slot`` is grouped, its usual-size box inside the group box:
+    at the centre its patterns give, else away from its partner's, else at its side of the pair
+    when seen apart (in place). ``centres``: (T, F, 2) object centres from the patterns, NaN
+    where a track has none."""
     for other in np.unique(partner[slot][partner[slot] >= 0]):
         grouped = np.flatnonzero(partner[slot] == other)
+        box = boxes[slot, grouped]
         apart = np.flatnonzero(~np.isnan(boxes[slot, :, 0]) & ~np.isnan(boxes[other, :, 0])
                                & (_overlap(boxes[slot], boxes[other]) <= GROUPED))
-        box = boxes[slot, grouped]
         for axis in (0, 1):
             size = np.minimum(usual[slot, grouped, axis], box[:, 2 + axis])
+            room = box[:, 2 + axis] - size
             if apart.size:
                 mine = boxes[slot, apart, axis] + boxes[slot, apart, 2 + axis] / 2
                 theirs = boxes[other, apart, axis] + boxes[other, apart, 2 + axis] / 2
                 side = np.interp(grouped, apart, (np.sign(mine - theirs) + 1) / 2)
             else:
                 side = np.full(grouped.size, 0.5)
-            placed[slot, grouped, axis] = box[:, axis] + side * (box[:, 2 + axis] - size)
+            middle = box[:, axis] + box[:, 2 + axis] / 2
+            theirs = centres[other, grouped, axis]
+            away = ~np.isnan(theirs)
+            side[away] = (np.sign(middle[away] - theirs[away]) + 1) / 2
+            start = box[:, axis] + side * room
+            mine = centres[slot, grouped, axis]
+            own = ~np.isnan(mine)
+            start[own] = np.clip(mine[own] - size[own] / 2, box[own, axis], box[own, axis] + room[own])
+            placed[slot, grouped, axis] = start
             placed[slot, grouped, 2 + axis] = size
 
 

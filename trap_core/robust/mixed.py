@@ -1,0 +1,83 @@
+"""One object per cluster: clusters of the lifetime cut that mix objects are split (ours).
+
+The lifetime cut (TRAP_SPEC section 6) chooses one level for the whole hierarchy. Once the
+background is left out, few patterns remain and the chosen level can hold a cluster whose
+patterns lie on two objects at the same time: averaged, its path runs between them. Two
+patterns of one object seen in the same frames are never further apart, on average over those
+frames, than half the sum of their sizes (their occurrence boxes' diagonals): they overlap or
+touch. A cluster with such a pair too far apart is replaced by the two clusters it was merged
+from, and so on down the hierarchy until every cluster passes.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial.distance import squareform
+
+from trap_core.clustering import Hierarchy, Trajectories
+from trap_core.mining import MiningResult
+
+
+def pattern_sizes(result: MiningResult, patterns: np.ndarray) -> np.ndarray:
+    """Mean diagonal of the occurrence boxes of each spatio-temporal pattern in ``patterns``."""
+    lengths = np.diff(result.st_offsets)[patterns]
+    rows = np.concatenate([result.st(s) for s in patterns]) if patterns.size else np.empty(0, np.int64)
+    box = result.occ_box[rows].astype(float)
+    diagonal = np.hypot(box[:, 2] - box[:, 0] + 1, box[:, 3] - box[:, 1] + 1)
+    owner = np.repeat(np.arange(patterns.size), lengths)
+    return np.bincount(owner, weights=diagonal, minlength=patterns.size) / np.maximum(lengths, 1)
+
+
+def split_mixed(hierarchy: Hierarchy, distances: np.ndarray, paths: Trajectories, sizes: np.ndarray) -> np.ndarray:
+    """Cluster labels (0..C'-1) of the cut with every cluster that mixes objects split.
+
+    Parameters
+    ----------
+    hierarchy : Hierarchy
+        The dendrogram and its cut.
+    distances : condensed array
+        ``d(A, B) = d_traj * (2 - d_ov)`` of the clustered patterns (TRAP_SPEC section 5), from
+        which the mean distance over common frames ``d_traj`` is recovered.
+    paths : Trajectories
+        The clustered patterns' trajectories (their spans give ``d_ov``).
+    sizes : (n,) array
+        Size of each pattern (:func:`pattern_sizes`).
+
+    Returns
+    -------
+    (n,) int array
+    """
+    n = hierarchy.n
+    if n < 2:
+        return hierarchy.labels.copy()
+    common = np.clip(np.minimum(paths.end[:, None], paths.end[None, :])
+                     - np.maximum(paths.start[:, None], paths.start[None, :]) + 1, 0, None)
+    spans = paths.end - paths.start + 1
+    shared = common / (spans[:, None] + spans[None, :] - common)
+    mean_distance = squareform(distances) / (2 - shared)
+    far = (common >= 2) & (mean_distance > (sizes[:, None] + sizes[None, :]) / 2)
+    children = hierarchy.linkage[:, :2].astype(np.int64)
+    below_cut = n + (n - hierarchy.cut_level)  # nodes formed by the merges made before the cut
+    labels = np.empty(n, dtype=np.int64)
+    next_label = 0
+    stack = [2 * n - 2]
+    while stack:
+        node = stack.pop()
+        leaves = _leaves(children, n, node)
+        if node < n or (node < below_cut and not far[np.ix_(leaves, leaves)].any()):
+            labels[leaves] = next_label
+            next_label += 1
+        else:
+            stack.extend(children[node - n].tolist())
+    return np.unique(labels, return_inverse=True)[1]
+
+
+def _leaves(children: np.ndarray, n: int, node: int) -> np.ndarray:
+    """Patterns under ``node`` of a scipy linkage tree."""
+    found, stack = [], [node]
+    while stack:
+        top = stack.pop()
+        if top < n:
+            found.append(top)
+        else:
+            stack.extend(children[top - n].tolist())
+    return np.array(found, dtype=np.int64)

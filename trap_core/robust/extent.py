@@ -18,6 +18,7 @@ import numpy as np
 
 from trap_core.clustering import Track
 from trap_core.rag import PlaneGraph
+from trap_core.robust._kernels import moving_regions
 
 MAX_AREA = 4.0  # regions larger than this times the box are background, whatever their motion
 
@@ -57,41 +58,15 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
             if j < 0:
                 moving = None
                 break
-            found = _moving_regions(graphs[frame], graphs[other], track.boxes[i], track.boxes[j],
-                                    transforms[other] @ np.linalg.inv(transforms[frame]), reach, tolerance)
-            moving = found if moving is None else np.intersect1d(moving, found)
-        if moving is not None and moving.size:
+            here, there = graphs[frame], graphs[other]
+            found = moving_regions(here.bbox, here.centroid, here.area, here.label, there.centroid, there.area,
+                                   there.label, track.boxes[i].astype(float), track.boxes[j].astype(float),
+                                   transforms[other] @ np.linalg.inv(transforms[frame]), reach, tolerance, MAX_AREA)
+            moving = found if moving is None else moving & found
+        if moving is not None and moving.any():
             x, y, w, h = boxes[i]
             parts = graphs[frame].bbox[moving]
             x0, y0 = min(x, parts[:, 0].min()), min(y, parts[:, 1].min())
             x1, y1 = max(x + w - 1, parts[:, 2].max()), max(y + h - 1, parts[:, 3].max())
             boxes[i] = (x0, y0, x1 - x0 + 1, y1 - y0 + 1)
     return dataclasses.replace(track, boxes=boxes)
-
-
-def _moving_regions(graph: PlaneGraph, other: PlaneGraph, box: np.ndarray, other_box: np.ndarray,
-                    camera: np.ndarray, reach: float, tolerance: float) -> np.ndarray:
-    """Regions of ``graph`` near ``box`` that the track's displacement to ``other`` (a frame
-    whose track box is ``other_box``) puts on a look-alike region and the camera's (``camera``:
-    this frame's coordinates to the other's) does not."""
-    x, y, w, h = box
-    bbox = graph.bbox
-    near = np.flatnonzero((bbox[:, 2] >= x - reach * w) & (bbox[:, 3] >= y - reach * h)
-                          & (bbox[:, 0] <= x + w + reach * w) & (bbox[:, 1] <= y + h + reach * h)
-                          & (graph.area <= MAX_AREA * w * h))
-    if near.size == 0:
-        return near
-    centre = graph.centroid[near].astype(float)
-    area = graph.area[near].astype(float)
-    shift = other_box[:2] + other_box[2:] / 2 - (box[:2] + box[2:] / 2)
-    with_camera = np.column_stack([centre, np.ones(near.size)]) @ camera.T
-    with_camera = with_camera[:, :2] / with_camera[:, 2:3]
-    alike = ((other.label[None, :] == graph.label[near][:, None])
-             & (other.area[None, :] < 2 * area[:, None]) & (other.area[None, :] > area[:, None] / 2))
-
-    def nearest(places: np.ndarray) -> np.ndarray:
-        distance = np.linalg.norm(other.centroid[None, :, :] - places[:, None, :], axis=2)
-        return np.where(alike, distance, np.inf).min(axis=1)
-
-    with_track = nearest(centre + shift)
-    return near[(with_track <= tolerance * np.sqrt(area) + 1) & (with_track < nearest(with_camera) / 2)]

@@ -87,6 +87,21 @@ def test_rejoin_joins_same_structure_across_a_gap_but_not_overlapping_lookalikes
     assert np.unique(different).size == 3
 
 
+def test_rejoin_weighs_structures_by_how_much_of_the_fragment_they_are() -> None:
+    """Before the gap the object shows its main structure (5) for 50 frames and three others
+    briefly; after it, the main one and four others: one shared structure in four, but most
+    of both fragments."""
+    line = lambda start, n: np.column_stack([np.arange(start, start + n) * 2.0, np.full(n, 10.0)])  # noqa: E731
+    before = [(0, line(0, 50))] + [(40, line(40, 10))] * 3
+    after = [(70, line(70, 30))] + [(75, line(75, 10))] * 4
+    paths = _paths(before + after)
+    labels = np.array([0] * 4 + [1] * 5)
+    st_pattern = np.array([5, 1, 2, 3, 5, 6, 7, 8, 9])
+    occurrences = np.array([50, 10, 10, 10, 30, 10, 10, 10, 10])
+    assert np.unique(rejoin_fragments(labels, paths, st_pattern, 100)).size == 2  # 1 of 4 < 0.3
+    assert np.unique(rejoin_fragments(labels, paths, st_pattern, 100, weights=occurrences)).size == 1
+
+
 def test_rejoin_follows_the_way_an_object_went() -> None:
     """A fragment that left through the border continues one that enters through it, not one
     that vanished inside the view, even if the latter predicts it better."""

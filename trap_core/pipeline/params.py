@@ -56,8 +56,8 @@ class TrapParams:
     one_object: bool = _p(True, "robust: a cluster of the cut whose patterns lie on two objects at once (on average "
                                 "further apart than half their sizes) is split down the hierarchy")
     rejoin: bool = _p(True, "robust: rejoin fragments of one object across occlusions and exits")
-    rejoin_similarity: float = _p(0.3, "robust: share of the smaller fragment's structures the other must have to "
-                                       "rejoin them")
+    rejoin_similarity: float = _p(0.3, "robust: share of a fragment (counted in occurrences) whose structures the "
+                                       "other also has, needed to rejoin them")
     core_share: float = _p(0.8, "robust: track box from regions in at least this share of the occurrences; 0 = all")
     size_jump: float = _p(1.5, "robust: a track box this many times wider or taller than its usual size (running "
                                "median over 4 tau frames each side where it is alone) holds more than the object: it "

@@ -78,11 +78,11 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     labels = hierarchy.labels
     if robust and params.one_object:
         labels = split_mixed(hierarchy, distances, sub_paths, pattern_sizes(mined, clustered))
+    occurrences = np.diff(mined.st_offsets)[clustered]
     if robust and params.rejoin:
         labels = rejoin_fragments(labels, sub_paths, mined.st_pattern[clustered], n_frames,
                                   params.rejoin_similarity, params.tau,
-                                  border_contacts(mined, clustered, width, height))
-    occurrences = np.diff(mined.st_offsets)[clustered]
+                                  border_contacts(mined, clustered, width, height), occurrences)
     summary = summarise(labels, sub_paths, occurrences, n_frames)
     moving = None
     if robust and params.min_speed > 0:  # the whole cluster too: averaged, noise no longer passes for motion

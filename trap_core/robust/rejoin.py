@@ -4,8 +4,9 @@ section 10 "fragments never rejoin").
 The pattern distance is infinite between patterns that share no frames, so an object that
 disappears for a while comes back as another cluster. Two clusters are joined when they do
 not overlap in time (at most ``max_overlap`` shared frames), are made of the same structures
-(the share of the smaller one's plane patterns that the other also has is at least
-``min_similarity``: a short fragment may show only some of the object's structures), and,
+(for one of them, the share of its occurrences whose plane patterns the other also has is at
+least ``min_similarity``: a short fragment may show only some of the object's structures, and
+the ones an object shows all along count more than those seen for a moment), and,
 among all such pairs, the later one starts closest to where the earlier one's motion predicts; pairs are
 joined greedily, closest first, and a joined cluster can no longer take a fragment that
 overlaps it, which keeps look-alike objects apart. With the fragments' border contacts, a
@@ -23,24 +24,26 @@ from trap_core.mining import MiningResult
 
 def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.ndarray, n_frames: int,
                      min_similarity: float = 0.3, max_overlap: int = 25,
-                     at_border: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+                     at_border: tuple[np.ndarray, np.ndarray] | None = None,
+                     weights: np.ndarray | None = None) -> np.ndarray:
     """Cluster labels (0..C'-1) after joining fragments of the same object.
 
     Candidate pairs and their costs are computed once on the fragments; they are then taken
     cheapest first, and a pair is joined only if the two groups it would unite (including
     earlier joins) still share at most ``max_overlap`` frames. ``at_border``: per pattern,
     whether it starts and whether it ends at the image border (:func:`border_contacts`).
+    ``weights``: per pattern, how much of its fragment it is (its occurrences); by default
+    every pattern counts one.
     """
     labels = np.unique(labels, return_inverse=True)[1]
     summary = summarise(labels, paths, np.ones(labels.size), n_frames)
     n_clusters = summary.length.size
     if n_clusters < 2:
         return labels
-    signature = np.zeros((n_clusters, int(st_pattern.max()) + 1), dtype=bool)
-    signature[labels, st_pattern] = True
-    shared = signature.astype(np.float32) @ signature.T.astype(np.float32)
-    sizes = signature.sum(axis=1)
-    similarity = shared / np.maximum(np.minimum(sizes[:, None], sizes[None, :]), 1)
+    weighted = np.zeros((n_clusters, int(st_pattern.max()) + 1))
+    np.add.at(weighted, (labels, st_pattern), 1.0 if weights is None else weights)
+    share = (weighted @ (weighted > 0).T) / np.maximum(weighted.sum(axis=1), 1e-12)[:, None]
+    similarity = np.maximum(share, share.T)  # the share of the fragment that has less in the other
     covered = summary.covered.astype(np.float32)
     overlap = covered @ covered.T
     start = summary.paths.start

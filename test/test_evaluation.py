@@ -11,7 +11,7 @@ import pytest
 from trap_core.evaluation import box_precision_recall, cluster_precision_recall
 from trap_core.evaluation.baselines import run_baselines
 from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores
-from trap_core.pipeline import TrapParams, frame_graph, track
+from trap_core.pipeline import TrapParams, synthetic_graphs, track
 from trap_core.synthetic import SceneConfig, render, write_synthetic
 
 
@@ -24,14 +24,8 @@ def test_box_measures() -> None:
 
 @pytest.fixture(scope="module")
 def paper_run():
-    cfg = SceneConfig(width=320, height=240, frames=150, seed=6)
-    truth = [{} for _ in range(cfg.objects)]
-    graphs = []
-    for frame in render(cfg):
-        graphs.append(frame_graph(frame.rgb, TrapParams(segmentation="colour")))
-        for obj, box in enumerate(frame.boxes):
-            if box:
-                truth[obj][frame.index] = box
+    graphs, truth = synthetic_graphs(SceneConfig(width=320, height=240, frames=150, seed=6),
+                                     TrapParams(segmentation="colour"))
     return graphs, truth, track(graphs, TrapParams(segmentation="colour", method="paper", n_objects=3))
 
 

@@ -7,9 +7,9 @@ import pytest
 from trap_core.clustering import ObservedPaths, Trajectories
 from trap_core.evaluation import box_precision_recall
 from trap_core.mining._kernels import assign_occurrences, link_occurrences
-from trap_core.pipeline import TrapParams, frame_graph, track
+from trap_core.pipeline import TrapParams, frame_graph, synthetic_graphs, track
 from trap_core.robust import camera_transforms, rejoin_fragments, world_speed
-from trap_core.synthetic import PRESETS, SceneConfig, render
+from trap_core.synthetic import PRESETS, SceneConfig
 
 
 def test_assignment_keeps_crossing_lookalikes_apart() -> None:
@@ -239,15 +239,7 @@ _BASE = TrapParams(segmentation="colour", eps=20.0, tau=25)
 @pytest.fixture(scope="module", params=["anim1", "anim2"])
 def short_video(request) -> tuple[list, list[dict[int, tuple]]]:
     """Graphs and ground-truth boxes of a short 320x240 analogue."""
-    cfg = SceneConfig(width=320, height=240, frames=240, seed=1, **PRESETS[request.param])
-    truth: list[dict[int, tuple]] = [{} for _ in range(cfg.objects)]
-    graphs = []
-    for frame in render(cfg):
-        graphs.append(frame_graph(frame.rgb, _BASE))
-        for obj, box in enumerate(frame.boxes):
-            if box:
-                truth[obj][frame.index] = box
-    return graphs, truth
+    return synthetic_graphs(SceneConfig(width=320, height=240, frames=240, seed=1, **PRESETS[request.param]), _BASE)
 
 
 def _boxes(track_) -> dict[int, tuple]:

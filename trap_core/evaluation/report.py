@@ -14,14 +14,13 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from scipy.optimize import linear_sum_assignment  # noqa: E402
 
 from trap_core.bagio import open_image_stream  # noqa: E402
 from trap_core.cli import UsageError, parameter_assignment, run_main  # noqa: E402
 from trap_core.evaluation.baselines import TRACKERS, run_baselines  # noqa: E402
 from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores, level_curves  # noqa: E402
-from trap_core.evaluation.mot_metrics import clear_mot, hota, idf1  # noqa: E402
 from trap_core.evaluation.paper_measures import box_precision_recall, cluster_precision_recall  # noqa: E402
+from trap_core.evaluation.scoring import match_objects, mot_measures  # noqa: E402
 from trap_core.motformat import ground_truth_path, read_mot  # noqa: E402
 from trap_core.outputs import Thumbnails, contact_sheet  # noqa: E402
 from trap_core.pipeline import TrapParams, frame_rate, graphs_of, track  # noqa: E402
@@ -56,29 +55,6 @@ def _truth(path: Path) -> list[dict[int, tuple]]:
     return [{int(r[0]) - 1: tuple(r[2:6]) for r in rows[rows[:, 1] == i]} for i in ids]
 
 
-def _track_rows(boxes_per_track: list[dict[int, tuple]]) -> np.ndarray:
-    rows = [(f + 1, k + 1, *box) for k, boxes in enumerate(boxes_per_track) for f, box in boxes.items()]
-    return np.array(rows, dtype=float).reshape(-1, 6)
-
-
-def _match(boxes_per_track: list[dict[int, tuple]], truth: list[dict[int, tuple]]) -> list[tuple[int | None, float, float]]:
-    """For each object: (track index, precision, recall) of the one-to-one best track by P*R."""
-    scores = np.array([[box_precision_recall(t, gt) for gt in truth] for t in boxes_per_track]).reshape(
-        len(boxes_per_track), len(truth), 2)
-    out: list[tuple[int | None, float, float]] = [(None, 0.0, 0.0)] * len(truth)
-    if len(boxes_per_track):
-        rows, cols = linear_sum_assignment(-(scores[..., 0] * scores[..., 1]))
-        for r, c in zip(rows, cols):
-            out[c] = (int(r), float(scores[r, c, 0]), float(scores[r, c, 1]))
-    return out
-
-
-def _mot(boxes_per_track: list[dict[int, tuple]], truth: list[dict[int, tuple]]) -> dict[str, float]:
-    gt, tr = _track_rows(truth), _track_rows(boxes_per_track)
-    clear = clear_mot(gt, tr)
-    return {"MOTA": clear.mota, "IDF1": idf1(gt, tr), "HOTA": hota(gt, tr)}
-
-
 def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str], out: Path, topic: str | None,
                  ) -> dict:
     truth = _truth(gt_path)
@@ -102,13 +78,13 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
         run = track(graphs, params, frame_rate(stamps))
         seconds = time.perf_counter() - start
         boxes = [{int(f): tuple(b) for f, b in zip(t.frames, t.boxes)} for t in run.tracks]
-        matched = _match(boxes, truth)
+        matched = match_objects(boxes, truth)
         objects = []
         for (k, p, r), gt in zip(matched, truth):
             cp, cr = (cluster_precision_recall(run.mining, np.flatnonzero(run.labels == run.tracks[k].cluster), gt)
                       if k is not None else (0.0, 0.0))
             objects.append({"box_p": p, "box_r": r, "cluster_p": cp, "cluster_r": cr})
-        entry = {"seconds": seconds, "tracks": len(run.tracks), "objects": objects, **_mot(boxes, truth),
+        entry = {"seconds": seconds, "tracks": len(run.tracks), "objects": objects, **mot_measures(boxes, truth),
                  "patterns": run.mining.n_st}
         if overrides["method"] == "paper":
             clustered = np.arange(run.mining.n_st)
@@ -139,7 +115,7 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
         for tracker, boxes in tracked.items():
             scores = [box_precision_recall(b, gt) for b, gt in zip(boxes, truth)]
             result["baselines"][tracker] = {"objects": [{"box_p": p, "box_r": r} for p, r in scores],
-                                            "seconds": per_tracker, **_mot(boxes, truth)}
+                                            "seconds": per_tracker, **mot_measures(boxes, truth)}
     return result
 
 

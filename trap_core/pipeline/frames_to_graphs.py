@@ -15,6 +15,7 @@ import numpy as np
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, build_plane_graph
 from trap_core.segmentation import colour_components, felzenszwalb
+from trap_core.synthetic import SceneConfig, render
 
 
 def frame_graph(rgb: np.ndarray, params: TrapParams) -> PlaneGraph:
@@ -37,3 +38,18 @@ def graphs_of(frames: Iterable[np.ndarray], params: TrapParams) -> Iterator[Plan
                 yield pending.popleft().result()
         while pending:
             yield pending.popleft().result()
+
+
+def synthetic_graphs(config: SceneConfig, params: TrapParams) -> tuple[list[PlaneGraph], list[dict[int, tuple]]]:
+    """Plane graphs of a synthetic video and each object's ground-truth boxes (frame -> x, y, w,
+    h): what tests and quality benchmarks track and score, without writing a bag."""
+    truth: list[dict[int, tuple]] = [{} for _ in range(config.objects)]
+
+    def frames() -> Iterator[np.ndarray]:
+        for frame in render(config):
+            for obj, box in enumerate(frame.boxes):
+                if box:
+                    truth[obj][frame.index] = box
+            yield frame.rgb
+
+    return list(graphs_of(frames(), params)), truth

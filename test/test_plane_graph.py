@@ -184,3 +184,21 @@ def test_contact_tolerance_keeps_embeddings_valid() -> None:
         _assert_valid_embedding(graph)
     with pytest.raises(GraphError, match="contact_tolerance"):
         build_plane_graph(labels, n, np.zeros((height, width, 3), np.uint8), contact_tolerance=-1)
+
+
+def test_label_memory_keeps_labels_through_a_slow_drift_but_not_a_jump() -> None:
+    from trap_core.pipeline import TrapParams, frame_graph
+    from trap_core.rag import LabelMemory
+    params = TrapParams(segmentation="colour")
+    memory = LabelMemory()
+    plain, kept = [], []
+    for t in range(12):
+        rgb = np.full((60, 80, 3), 30, np.uint8)
+        red = 116 + 2 * t if t < 10 else 40  # drifts across the level boundary at 128, then jumps
+        rgb[20:40, 20:50] = (red, 200, 30)
+        graph = frame_graph(rgb, params)
+        block = int(np.argmin(np.abs(graph.area - 600)))
+        plain.append(int(graph.label[block]))
+        kept.append(int(memory(graph).label[block]))
+    assert len(set(plain[:10])) == 2 and len(set(kept[:10])) == 1  # quantised labels flip at 128; kept do not
+    assert kept[10] == plain[10] != kept[9]  # a colour jump is a new label

@@ -50,6 +50,8 @@ class TrapParams:
                                   "of the window; 0 = the whole video at once (paper)")
     method: str = _p("robust", "paper (TRAP as published) or robust (ours: README 'Method')")
     one_path: bool = _p(True, "robust: link each pattern's occurrences one to one (one object, one path)")
+    label_memory: bool = _p(True, "robust: a region that continues one of the previous frame (near, similar area "
+                                  "and colour) keeps its label, so slow light changes do not flip labels")
     min_speed: float = _p(0.03, "robust: image widths per second, relative to the camera and over tau/2 frames, "
                                 "below which patterns (and, over tau frames, clusters) are background (0.03 = 0.75 "
                                 "px/frame at 640 px, 25 Hz); 0 = off")
@@ -63,7 +65,7 @@ class TrapParams:
                                "median over 4 tau frames each side where it is alone) holds more than the object: it "
                                "is given the usual size; 0 = off")
     grow: bool = _p(True, "robust: track boxes grow over nearby regions that move with the track, tau/5 frames before "
-                          "and after (objects the segmentation splits into parts)")
+                          "or after (objects the segmentation splits into parts)")
     groups: bool = _p(True, "robust: where tracks' boxes merge, each gets its usual size at its side of the pair, and a "
                             "track that vanishes inside another's box continues there while it holds two objects")
     linkage: str = _p("average", "hierarchical clustering linkage: average, single, complete, weighted (ours)")

@@ -12,7 +12,7 @@ import time
 
 from trap_core.mining import MiningParams, MiningResult, WindowedMiner, mine, mine_auto
 from trap_core.pipeline.params import TrapParams
-from trap_core.rag import PlaneGraph
+from trap_core.rag import LabelMemory, PlaneGraph
 
 
 class PatternMiner:
@@ -27,6 +27,7 @@ class PatternMiner:
         self.seconds = 0.0
         self._graphs: list[PlaneGraph] = []
         self._windows: WindowedMiner | None = None
+        self._labels = LabelMemory() if params.method == "robust" and params.label_memory else None
         if params.mining_window > 0:
             span = min(n_frames, params.mining_window) if n_frames else params.mining_window
             self._windows = WindowedMiner(params.mining(span), params.mining_window,
@@ -34,6 +35,8 @@ class PatternMiner:
 
     def add(self, graph: PlaneGraph) -> None:
         start = time.perf_counter()
+        if self._labels is not None:
+            graph = self._labels(graph)
         if self._windows is None:
             self._graphs.append(graph)
         else:

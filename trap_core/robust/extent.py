@@ -3,11 +3,11 @@
 A track's box surrounds the regions of its frequent patterns. Where the segmentation splits an
 object differently from frame to frame (noise, textured objects), only a few of its parts are in
 frequent patterns and the box covers those parts, not the object. Around the box, a region is
-taken as part of the object when it moves with it: ``lag`` frames before and ``lag`` frames after,
+taken as part of the object when it moves with it: ``lag`` frames before or ``lag`` frames after,
 the track's displacement brings it onto a region of the same label and similar area (within
 ``tolerance`` times the square root of its area), and the camera's motion does not bring it
-anywhere nearly as close (background regions move with the camera). Both directions must agree,
-so a chance look-alike region seldom passes.
+anywhere nearly as close (background regions move with the camera). Either direction suffices:
+noisy regions are often found again on one side only.
 """
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
         Camera motion: ``transforms[t]`` maps frame-0 coordinates to frame ``t``
         (:func:`trap_core.robust.camera_transforms`).
     lag : int
-        Frames before and after a frame where a region's motion is checked.
+        Frames before and after a frame where a region's motion is checked (either will do).
     reach : float
         Regions that touch the box grown by this share of its size on each side are candidates.
     tolerance : float
@@ -56,13 +56,12 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
         for other in (frame - lag, frame + lag):
             j = slot[other] if 0 <= other < len(graphs) else -1
             if j < 0:
-                moving = None
-                break
+                continue
             here, there = graphs[frame], graphs[other]
             found = moving_regions(here.bbox, here.centroid, here.area, here.label, there.centroid, there.area,
                                    there.label, track.boxes[i].astype(float), track.boxes[j].astype(float),
                                    transforms[other] @ np.linalg.inv(transforms[frame]), reach, tolerance, MAX_AREA)
-            moving = found if moving is None else moving & found
+            moving = found if moving is None else moving | found
         if moving is not None and moving.any():
             x, y, w, h = boxes[i]
             parts = graphs[frame].bbox[moving]

@@ -4,6 +4,10 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
+# An object's part keeps its area from frame to frame; a background region the object passes
+# over loses or regains the part it hides, and its barycentre drifts with the object.
+AREA_RATIO = 1.25
+
 
 @nb.njit(cache=True, nogil=True)
 def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
@@ -11,7 +15,7 @@ def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
                    box: np.ndarray, other_box: np.ndarray, camera: np.ndarray, reach: float, tolerance: float,
                    max_area: float) -> np.ndarray:
     """Mask of the regions near ``box`` that the track's displacement to the other frame puts on
-    a look-alike region (same label, area within a factor 2, within ``tolerance`` sqrt(area) + 1
+    a look-alike region (same label, area within ``AREA_RATIO``, within ``tolerance`` sqrt(area) + 1
     px) at least twice as close as the camera's motion ``camera`` (3x3) does."""
     x, y, w, h = box[0], box[1], box[2], box[3]
     shift_x = other_box[0] + other_box[2] / 2 - (x + w / 2)
@@ -29,7 +33,8 @@ def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
         with_track = np.inf
         with_camera = np.inf
         for j in range(other_centroid.shape[0]):
-            if other_label[j] != label[i] or other_area[j] >= 2 * area[i] or 2 * other_area[j] <= area[i]:
+            if (other_label[j] != label[i] or other_area[j] >= AREA_RATIO * area[i]
+                    or AREA_RATIO * other_area[j] <= area[i]):
                 continue
             with_track = min(with_track, np.hypot(other_centroid[j, 0] - mx, other_centroid[j, 1] - my))
             with_camera = min(with_camera, np.hypot(other_centroid[j, 0] - kx, other_centroid[j, 1] - ky))

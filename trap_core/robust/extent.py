@@ -4,8 +4,9 @@ A track's box surrounds the regions of its frequent patterns. Where the segmenta
 object differently from frame to frame (noise, textured objects), only a few of its parts are in
 frequent patterns and the box covers those parts, not the object. Around the box, a region is
 taken as part of the object when it moves with it: ``lag`` frames before or ``lag`` frames after,
-the track's displacement brings it onto a region of the same label and similar area (within
-``tolerance`` times the square root of its area), and the camera's motion does not bring it
+the track's displacement brings it onto a region of the same label and about the same area
+(within 25 %: a background region the object passes over changes area as it is hidden), within
+``tolerance`` times the square root of its area, and the camera's motion does not bring it
 anywhere nearly as close (background regions move with the camera). Either direction suffices:
 noisy regions are often found again on one side only.
 """
@@ -40,7 +41,7 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
     reach : float
         Regions that touch the box grown by this share of its size on each side are candidates.
     tolerance : float
-        A region is found again if a region of the same label and area within a factor 2 lies
+        A region is found again if a region of the same label and area within 25 % lies
         within ``tolerance`` times the square root of its area (plus 1 px) of where a motion
         puts it.
 

@@ -189,7 +189,8 @@ def test_in_a_group_each_object_is_placed_where_its_patterns_are() -> None:
     frames = np.arange(80)
     patterns_a = a[:, :2] + [25.0, 15.0]  # the patterns' mean sits 5 px right of the object's centre
     patterns_b = b[:, :2] + [25.0, 15.0]
-    tracks = [Track(1, frames, seen_a, np.ones(80), 1, patterns_a), Track(2, frames, seen_b, np.ones(80), 2, patterns_b)]
+    tracks = [Track(1, frames, seen_a, np.ones(80), 1, patterns_a),
+              Track(2, frames, seen_b, np.ones(80), 2, patterns_b)]
     out = separate_groups(tracks, 80, 640, 480, window=10)
     np.testing.assert_allclose(out[0].boxes, a)
     np.testing.assert_allclose(out[1].boxes, b)  # right of a before the crossing, left after

@@ -66,8 +66,9 @@ class TrapParams:
                                "is given the usual size; 0 = off")
     grow: bool = _p(True, "robust: track boxes grow over nearby regions that move with the track, tau/5 frames before "
                           "or after (objects the segmentation splits into parts)")
-    groups: bool = _p(True, "robust: where tracks' boxes merge, each gets its usual size at its side of the pair, and a "
-                            "track that vanishes inside another's box continues there while it holds two objects")
+    groups: bool = _p(True, "robust: where tracks' boxes merge, each gets its usual size at its side of the pair, "
+                            "and a track that vanishes inside another's box continues there while it holds two "
+                            "objects")
     linkage: str = _p("average", "hierarchical clustering linkage: average, single, complete, weighted (ours)")
     ignore_top: float = _p(0.1, "share of the top levels of the hierarchy the lifetime cut ignores")
     n_objects: int = _p(0, "objects to track; 0 = found without supervision (ours)")

@@ -7,5 +7,5 @@ from trap_core.robust.groups import separate_groups
 from trap_core.robust.mixed import pattern_sizes, split_mixed
 from trap_core.robust.rejoin import border_contacts, rejoin_fragments
 
-__all__ = ["border_contacts", "camera_transforms", "cluster_world_speed", "grow_boxes", "pattern_sizes", "rejoin_fragments", "separate_groups",
-           "split_mixed", "world_speed"]
+__all__ = ["border_contacts", "camera_transforms", "cluster_world_speed", "grow_boxes", "pattern_sizes",
+           "rejoin_fragments", "separate_groups", "split_mixed", "world_speed"]

@@ -15,9 +15,10 @@ tracks themselves know:
   pair it was on when last seen apart (left or right, above or below), interpolated towards the
   side it is on when next seen apart;
 * **occluded**: a track that ends (or pauses) inside the view while in a group continues in the
-  group box while that box stays larger than its other member (so it still holds two objects;
-  shorter dips than ``patience`` frames do not end it), or through the whole pause when the track comes back from that same box. Such frames get half
-  the track's lowest observed confidence;
+  group box: through the whole pause when it comes back out of that same box, otherwise while the
+  box stays over 10 % larger than its other member was before the group formed (so it still holds
+  two objects; dips shorter than ``patience`` frames do not end it). Such frames get half the
+  track's lowest observed confidence;
 * **oversized** boxes outside groups (``factor`` times the usual size) get the usual size,
   centred where the neighbouring normal frames put the object, inside the observed box.
 """

@@ -42,8 +42,7 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     any frame (1 where the object shows all its structure).
     """
     patterns = np.flatnonzero(pattern_labels == cluster)
-    rows = np.concatenate([result.st(s) for s in patterns]) if patterns.size else np.empty(0, np.int64)
-    owner = np.repeat(patterns, [result.st(s).size for s in patterns])
+    rows, owner = result.rows_of(patterns)
     frames = result.occ_frame[rows]
     known, inverse = np.unique(frames, return_inverse=True)
     boxes = result.occ_box[rows]

@@ -18,8 +18,8 @@ def _inside(node_box: np.ndarray, gt: np.ndarray) -> np.ndarray:
 def cluster_precision_recall(result: MiningResult, patterns: np.ndarray, truth: dict[int, tuple]) -> tuple[float, float]:
     """Cluster precision: share of the cluster's occurrences whose nodes all lie in the ground-truth
     box of their frame (no box: outside). Recall: share of annotated frames with at least one
-    such occurrence."""
-    rows = np.concatenate([result.st(s) for s in patterns]) if len(patterns) else np.empty(0, np.int64)
+    such occurrence. ``patterns``: the cluster's spatio-temporal patterns, increasing."""
+    rows, _ = result.rows_of(np.asarray(patterns, dtype=np.int64))
     if rows.size == 0 or not truth:
         return 0.0, 0.0
     frames = result.occ_frame[rows]

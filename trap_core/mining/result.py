@@ -42,6 +42,14 @@ class MiningResult:
         """Occurrence rows of spatio-temporal pattern ``index``."""
         return self.st_rows[self.st_offsets[index]:self.st_offsets[index + 1]]
 
+    def rows_of(self, patterns: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Occurrence rows of the spatio-temporal patterns ``patterns`` (increasing), pattern after
+        pattern, and for each row the index in ``patterns`` of the pattern it belongs to."""
+        lengths = np.diff(self.st_offsets)
+        chosen = np.zeros(self.n_st, dtype=bool)
+        chosen[patterns] = True
+        return self.st_rows[np.repeat(chosen, lengths)], np.repeat(np.arange(len(patterns)), lengths[patterns])
+
     def freq_st(self) -> np.ndarray:
         """(S,) distinct frames of each spatio-temporal pattern."""
         frames = self.occ_frame[self.st_rows]
@@ -55,7 +63,7 @@ class MiningResult:
         and ``freq_st >= min_freq_st`` (mining is exact, so this equals mining again with them)."""
         keep = (self.pattern_frequency[self.st_pattern] >= min_freq) & (self.freq_st() >= min_freq_st)
         sizes = np.diff(self.st_offsets)[keep]
-        rows = self.st_rows[np.repeat(keep, np.diff(self.st_offsets))]
+        rows, _ = self.rows_of(np.flatnonzero(keep))
         return MiningResult(self.pattern_hash, self.pattern_frequency, self.pattern_faces, self.occ_frame,
                             self.occ_pattern, self.occ_position, self.occ_box, self.occ_node_box, self.occ_faces,
                             self.st_pattern[keep], np.r_[0, np.cumsum(sizes)].astype(np.int64), rows)

@@ -18,12 +18,12 @@ from trap_core.mining import MiningResult
 
 
 def pattern_sizes(result: MiningResult, patterns: np.ndarray) -> np.ndarray:
-    """Mean diagonal of the occurrence boxes of each spatio-temporal pattern in ``patterns``."""
-    lengths = np.diff(result.st_offsets)[patterns]
-    rows = np.concatenate([result.st(s) for s in patterns]) if patterns.size else np.empty(0, np.int64)
+    """Mean diagonal of the occurrence boxes of each spatio-temporal pattern in ``patterns``
+    (increasing)."""
+    rows, owner = result.rows_of(patterns)
     box = result.occ_box[rows].astype(float)
     diagonal = np.hypot(box[:, 2] - box[:, 0] + 1, box[:, 3] - box[:, 1] + 1)
-    owner = np.repeat(np.arange(patterns.size), lengths)
+    lengths = np.bincount(owner, minlength=patterns.size)
     return np.bincount(owner, weights=diagonal, minlength=patterns.size) / np.maximum(lengths, 1)
 
 

@@ -30,6 +30,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from trap_core.clustering import Track
+from trap_core.robust.rejoin import reaches_border
 
 GROUPED = 0.5  # share of the smaller box inside the other: the two boxes hold the same regions
 HOLDS_MORE = 1.1  # a box this much wider or taller than its usual size holds more than its object
@@ -159,7 +160,7 @@ def _follow_occluded(boxes: np.ndarray, partner: np.ndarray, width: float, heigh
         ends = present[np.flatnonzero(np.diff(np.append(present, n_frames)) > 1)]
         for last in ends:
             other = partner[slot, last]
-            if other < 0 or _at_border(boxes[slot, last], width, height, border):
+            if other < 0 or reaches_border(boxes[slot, last][None], width, height, border)[0]:
                 continue
             formed = last - _lasting(partner[slot, last::-1] == other, 1)
             before = np.arange(max(formed - window, 0), formed + 1)
@@ -189,11 +190,6 @@ def _lasting(flags: np.ndarray, patience: int) -> int:
         if stop - start >= patience or stop == flags.size:
             return int(start)
     return int(flags.size)
-
-
-def _at_border(box: np.ndarray, width: float, height: float, border: float) -> bool:
-    x, y, w, h = box
-    return bool(x <= border * w or y <= border * h or x + w >= width - border * w or y + h >= height - border * h)
 
 
 def _split(placed: np.ndarray, boxes: np.ndarray, usual: np.ndarray, centres: np.ndarray, partner: np.ndarray,

@@ -88,12 +88,17 @@ def _flag_near(labels: np.ndarray, pattern_edge: np.ndarray, cluster_edge: np.nd
 def border_contacts(result: MiningResult, patterns: np.ndarray, width: int, height: int,
                     margin: float = 0.25) -> tuple[np.ndarray, np.ndarray]:
     """Per spatio-temporal pattern of ``patterns``: whether its first and its last occurrence
-    boxes reach the image border, within ``margin`` times the box's own size (entering,
-    leaving the view)."""
+    boxes reach the image border (:func:`reaches_border`: entering, leaving the view)."""
     def touches(rows: np.ndarray) -> np.ndarray:
         box = result.occ_box[rows].astype(float)
-        mx, my = margin * (box[:, 2] - box[:, 0] + 1), margin * (box[:, 3] - box[:, 1] + 1)
-        return (box[:, 0] <= mx) | (box[:, 1] <= my) | (box[:, 2] >= width - 1 - mx) | (box[:, 3] >= height - 1 - my)
+        return reaches_border(np.column_stack([box[:, :2], box[:, 2:] - box[:, :2] + 1]), width, height, margin)
     first = result.st_rows[result.st_offsets[patterns]]
     last = result.st_rows[result.st_offsets[patterns + 1] - 1]
     return touches(first), touches(last)
+
+
+def reaches_border(boxes: np.ndarray, width: float, height: float, margin: float = 0.25) -> np.ndarray:
+    """Whether boxes ``(x, y, w, h)`` (N, 4) come within ``margin`` times their own size of the
+    image border: the object is entering or leaving the view."""
+    x, y, w, h = np.asarray(boxes, dtype=float).T
+    return (x <= margin * w) | (y <= margin * h) | (x + w >= width - margin * w) | (y + h >= height - margin * h)

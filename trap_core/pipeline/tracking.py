@@ -65,9 +65,10 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     observed = observed_paths(mined)  # each pattern's mean position per frame: camera motion and trajectories
     clustered = np.arange(mined.n_st)
     transforms = camera_transforms(observed, n_frames) if robust and (params.min_speed > 0 or params.grow) else None
+    still_below = params.min_speed * width / fps  # px per frame
     if robust and params.min_speed > 0:
         speed = world_speed(observed, transforms, mined.n_st, max(1, params.tau // 2))
-        clustered = np.flatnonzero(speed >= params.min_speed * width / fps)
+        clustered = np.flatnonzero(speed >= still_below)
     seconds["camera"] = time.perf_counter() - start
     start = time.perf_counter()
     sub_paths = trajectories(observed, clustered)
@@ -86,7 +87,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     summary = summarise(labels, sub_paths, occurrences, n_frames)
     moving = None
     if robust and params.min_speed > 0:  # the whole cluster too: averaged, noise no longer passes for motion
-        moving = cluster_world_speed(summary, transforms, params.tau) >= params.min_speed * width / fps
+        moving = cluster_world_speed(summary, transforms, params.tau) >= still_below
     selected = select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
                                params.min_track_length, params.separation, eligible=moving)
     all_labels = np.full(mined.n_st, -1, dtype=np.int64)

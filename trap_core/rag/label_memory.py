@@ -30,7 +30,12 @@ class LabelMemory:
         self._previous: PlaneGraph | None = None
 
     def __call__(self, graph: PlaneGraph) -> PlaneGraph:
-        previous, self._previous = self._previous, graph
+        self._previous = self._remembered(graph)
+        return self._previous
+
+    def _remembered(self, graph: PlaneGraph) -> PlaneGraph:
+        """``graph`` with the labels of the previous frame's regions it continues."""
+        previous = self._previous
         if previous is None or graph.n_nodes == 0 or previous.n_nodes == 0:
             return graph
         distance, nearest = cKDTree(previous.centroid).query(graph.centroid, k=1)
@@ -43,6 +48,4 @@ class LabelMemory:
             return graph
         label = graph.label.copy()
         label[same] = previous.label[nearest[same]]
-        remembered = dataclasses.replace(graph, label=label)
-        self._previous = remembered
-        return remembered
+        return dataclasses.replace(graph, label=label)

@@ -87,7 +87,7 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
     for slot in range(len(tracks)):
         _split(placed, boxes, usual, centres, partner, slot)
         if factor > 0:
-            _shrink_oversized(placed[slot], usual[slot], partner[slot] < 0, factor)
+            _shrink_oversized(placed[slot], usual[slot], alone[slot], factor)
     out = []
     for slot, t in enumerate(tracks):
         frames = np.flatnonzero(~np.isnan(placed[slot, :, 0]))

@@ -51,21 +51,23 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
     """
     slot = np.full(len(graphs), -1)
     slot[track.frames] = np.arange(len(track))
-    boxes = track.boxes.astype(float).copy()
+    core = track.boxes.astype(float)  # motions are measured between the boxes as built, not as grown
+    boxes = core.copy()
     for i, frame in enumerate(track.frames.tolist()):
+        here, from_here = graphs[frame], np.linalg.inv(transforms[frame])
         moving = None
         for other in (frame - lag, frame + lag):
             j = slot[other] if 0 <= other < len(graphs) else -1
             if j < 0:
                 continue
-            here, there = graphs[frame], graphs[other]
+            there = graphs[other]
             found = moving_regions(here.bbox, here.centroid, here.area, here.label, there.centroid, there.area,
-                                   there.label, track.boxes[i].astype(float), track.boxes[j].astype(float),
-                                   transforms[other] @ np.linalg.inv(transforms[frame]), reach, tolerance, MAX_AREA)
+                                   there.label, core[i], core[j],
+                                   transforms[other] @ from_here, reach, tolerance, MAX_AREA)
             moving = found if moving is None else moving | found
         if moving is not None and moving.any():
             x, y, w, h = boxes[i]
-            parts = graphs[frame].bbox[moving]
+            parts = here.bbox[moving]
             x0, y0 = min(x, parts[:, 0].min()), min(y, parts[:, 1].min())
             x1, y1 = max(x + w - 1, parts[:, 2].max()), max(y + h - 1, parts[:, 3].max())
             boxes[i] = (x0, y0, x1 - x0 + 1, y1 - y0 + 1)

@@ -331,3 +331,17 @@ def test_a_cluster_of_jittering_patterns_is_still_and_a_moving_one_is_not() -> N
     panning[:, 0, 2], panning[:, 1, 2] = 2 * np.arange(100), np.arange(100)
     still, moves = cluster_world_speed(summary, panning, lag=25)
     assert still > 2.0 and moves < 1e-6  # the first moves against the world, the second with it
+
+
+def test_short_gaps_get_interpolated_boxes_long_ones_stay_empty() -> None:
+    from trap_core.clustering import Track
+    from trap_core.robust import fill_gaps
+    frames = np.array([0, 1, 4, 5, 40, 41])  # a 2-frame gap, then a 34-frame one
+    boxes = np.column_stack([10.0 * frames, np.zeros(6), np.full(6, 20.0), np.full(6, 10.0)])
+    track = Track(1, frames, boxes, np.array([1.0, 0.8, 1.0, 1.0, 0.6, 1.0]), 1, np.ones((6, 2)))
+    filled = fill_gaps(track, max_gap=25)
+    assert filled.frames.tolist() == [0, 1, 2, 3, 4, 5, 40, 41]
+    np.testing.assert_allclose(filled.boxes[2:4, 0], [20.0, 30.0])  # on the straight line between
+    np.testing.assert_allclose(filled.score[2:4], 0.3)  # half the lowest observed confidence
+    assert np.isnan(filled.points[2:4]).all() and not np.isnan(filled.points[[0, 1, 4, 5, 6, 7]]).any()
+    assert fill_gaps(track, max_gap=1) is track

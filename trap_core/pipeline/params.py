@@ -66,6 +66,8 @@ class TrapParams:
                                "is given the usual size; 0 = off")
     grow: bool = _p(True, "robust: track boxes grow over nearby regions that move with the track, tau/5 frames before "
                           "or after (objects the segmentation splits into parts)")
+    fill_gaps: bool = _p(True, "robust: a track's box is interpolated through its gaps of at most tau frames "
+                               "(patterns missed for a few frames)")
     groups: bool = _p(True, "robust: where tracks' boxes merge, each gets its usual size at its side of the pair, "
                             "and a track that vanishes inside another's box continues there while it holds two "
                             "objects")

@@ -345,3 +345,33 @@ def test_short_gaps_get_interpolated_boxes_long_ones_stay_empty() -> None:
     np.testing.assert_allclose(filled.score[2:4], 0.3)  # half the lowest observed confidence
     assert np.isnan(filled.points[2:4]).all() and not np.isnan(filled.points[[0, 1, 4, 5, 6, 7]]).any()
     assert fill_gaps(track, max_gap=1) is track
+
+
+def test_a_track_ending_at_the_border_follows_its_object_out_of_view() -> None:
+    from trap_core.clustering import Track
+    from trap_core.robust import continue_to_border
+    frames = np.arange(20)  # a 20x10 object moving left 3 px a frame; patterns lost once it is cut (frame 18, x = 6)
+    boxes = np.column_stack([60.0 - 3 * frames, np.full(20, 30.0), np.full(20, 20.0), np.full(20, 10.0)])
+    boxes[19] = (3, 30, 15, 10)  # its last box, a part already at the border
+    track = Track(1, frames, boxes, np.ones(20), 1, np.ones((20, 2)))
+    out = continue_to_border(track, n_frames=100, width=200, height=100, span=12, max_frames=50)
+    assert out.frames.tolist() == list(range(27))  # x = 0 at frame 20 .. its right 2 px in view at frame 26
+    np.testing.assert_allclose(out.boxes[20], [0, 30, 20, 10])
+    np.testing.assert_allclose(out.boxes[25], [0, 30, 5, 10])  # the object's x = -15: its right 5 px are in view
+    np.testing.assert_allclose(out.score[20:], 0.5)
+    assert np.isnan(out.points[20:]).all()
+
+
+def test_a_track_entering_is_continued_back_and_a_stop_at_the_border_is_not() -> None:
+    from trap_core.clustering import Track
+    from trap_core.robust import continue_to_border
+    frames = np.arange(50, 70)  # enters through the right border (width 200) moving left 2 px a frame
+    boxes = np.column_stack([175.0 - 2 * (frames - 50), np.full(20, 30.0), np.full(20, 20.0), np.full(20, 10.0)])
+    entering = Track(1, frames, boxes, np.ones(20), 1, None)
+    out = continue_to_border(entering, n_frames=100, width=200, height=100, span=12, max_frames=50)
+    assert out.frames[0] == 38 and out.frames.size == 32  # x = 199 at frame 38: 1 px in view
+    np.testing.assert_allclose(out.boxes[0], [199, 30, 1, 10])
+    parked = Track(2, frames, np.tile([178.0, 30.0, 20.0, 10.0], (20, 1)), np.ones(20), 2, None)
+    assert continue_to_border(parked, 100, 200, 100) is parked  # it stands at the border: no crossing
+    inside = Track(3, frames, np.tile([100.0, 30.0, 20.0, 10.0], (20, 1)), np.ones(20), 3, None)
+    assert continue_to_border(inside, 100, 200, 100) is inside

@@ -30,12 +30,12 @@ from trap_core.progress import Progress  # noqa: E402
 # The ablation: the paper's method, then each step of the robust one added in turn (its parameter
 # back at its default), from one-to-one linking alone.
 _ROBUST_OFF = dict(label_memory=False, min_speed=0.0, one_object=False, rejoin=False, core_share=0.0, grow=False,
-                   fill_gaps=False, size_jump=0.0, groups=False)
+                   fill_gaps=False, size_jump=0.0, groups=False, to_border=False)
 _ROBUST_STEPS = (("+ label memory", "label_memory"), ("+ camera motion", "min_speed"),
                  ("+ one object per cluster", "one_object"), ("+ rejoin fragments", "rejoin"),
                  ("+ core boxes", "core_share"), ("+ grown boxes", "grow"), ("+ filled gaps", "fill_gaps"),
                  ("+ steady box size", "size_jump"),
-                 ("robust (+ where objects meet)", "groups"))
+                 ("+ where objects meet", "groups"), ("robust (+ across the border)", "to_border"))
 
 
 def _ablation() -> tuple[tuple[str, dict], ...]:

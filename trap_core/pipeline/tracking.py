@@ -13,8 +13,8 @@ from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
-from trap_core.robust import (border_contacts, camera_transforms, cluster_world_speed, fill_gaps, grow_boxes,
-                              pattern_sizes, rejoin_fragments, separate_groups, split_mixed, world_speed)
+from trap_core.robust import (border_contacts, camera_transforms, cluster_world_speed, continue_to_border, fill_gaps,
+                              grow_boxes, pattern_sizes, rejoin_fragments, separate_groups, split_mixed, world_speed)
 
 
 @dataclass
@@ -101,5 +101,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     if robust and (params.size_jump or params.groups):
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=params.groups, patience=params.tau)
+    if robust and params.to_border:
+        tracks = [continue_to_border(t, n_frames, width, height, max(3, params.tau // 2), 2 * params.tau)
+                  for t in tracks]
     seconds["clustering"] = time.perf_counter() - start
     return TrackingResult(mined, sub_paths, clustered, hierarchy, summary, selected, tracks, all_labels, seconds)

@@ -1,6 +1,7 @@
 """Beyond the paper: camera-motion compensation, object/background split, fragment rejoining,
 track boxes where objects meet."""
 
+from trap_core.robust.borders import continue_to_border
 from trap_core.robust.camera import camera_transforms, cluster_world_speed, world_speed
 from trap_core.robust.extent import grow_boxes
 from trap_core.robust.gaps import fill_gaps
@@ -8,5 +9,5 @@ from trap_core.robust.groups import separate_groups
 from trap_core.robust.mixed import pattern_sizes, split_mixed
 from trap_core.robust.rejoin import border_contacts, rejoin_fragments
 
-__all__ = ["border_contacts", "camera_transforms", "cluster_world_speed", "fill_gaps", "grow_boxes", "pattern_sizes",
+__all__ = ["border_contacts", "camera_transforms", "cluster_world_speed", "continue_to_border", "fill_gaps", "grow_boxes", "pattern_sizes",
            "rejoin_fragments", "separate_groups", "split_mixed", "world_speed"]

@@ -1,0 +1,98 @@
+"""Track boxes continued while an object crosses the image border (ours).
+
+An object that leaves the view is cut by the border frame after frame; its regions shrink and
+change, its patterns stop being found while part of it is still visible, and the track ends
+early (the mirror image for an object that enters). The part still in view is where the object
+would be had it kept its motion: its box when last fully in view moved at its velocity over
+those frames, clipped to the image. A track is continued so when its box reaches the border
+(:func:`reaches_border`) where it ends (starts), for as long as that box overlaps the image, at
+most ``max_frames``, and never into frames the track already covers. Such frames have no
+patterns of their own (``points`` NaN) and half the track's lowest observed confidence.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from trap_core.clustering import Track
+from trap_core.robust.rejoin import reaches_border
+
+SIZE_RATIO = 1.25  # a box in view this much smaller than the track's usual one may be of a cut part
+
+
+def continue_to_border(track: Track, n_frames: int, width: float, height: float, span: int = 12,
+                       max_frames: int = 50) -> Track:
+    """The track with boxes for the frames where its object, leaving or entering the view at
+    a run's end or start, is still partly visible.
+
+    Parameters
+    ----------
+    track : Track
+    n_frames, width, height :
+        Video length and frame size (boxes are clipped to ``[0, width) x [0, height)``).
+    span : int
+        Frames, fully in view, whose box centres give the velocity (a straight-line fit) and
+        whose median box is the object's size; at least 3 are needed.
+    max_frames : int
+        Frames at most added at one end of a run.
+
+    Returns
+    -------
+    Track
+    """
+    frames = track.frames
+    if frames.size < 3:
+        return track
+    boxes = track.boxes.astype(float)
+    whole = ((boxes[:, 0] > 0) & (boxes[:, 1] > 0) & (boxes[:, 0] + boxes[:, 2] < width)
+             & (boxes[:, 1] + boxes[:, 3] < height))
+    if not whole.any():
+        return track
+    ratio = boxes[:, 2:] / np.median(boxes[whole, 2:], axis=0)
+    whole &= np.all((ratio > 1 / SIZE_RATIO) & (ratio < SIZE_RATIO), axis=1)  # not a part cut by the border
+    at_border = reaches_border(boxes, width, height)
+    breaks = np.flatnonzero(np.diff(frames) > 1)
+    starts, ends = np.r_[0, breaks + 1], np.r_[breaks, frames.size - 1]
+    added_frames, added_boxes = [], []
+    taken = set(frames.tolist())
+    for run, (first, last) in enumerate(zip(starts, ends)):
+        before = frames[ends[run - 1]] if run > 0 else -1
+        after = frames[starts[run + 1]] if run + 1 < starts.size else n_frames
+        for edge, step, limit in ((last, 1, after), (first, -1, before)):
+            if not at_border[edge]:
+                continue
+            inward = np.arange(edge, first - 1, -1) if step == 1 else np.arange(edge, last + 1)
+            reference = inward[whole[inward]][:span]
+            if reference.size < 3:
+                continue
+            centre = boxes[reference, :2] + boxes[reference, 2:] / 2
+            velocity, intercept = np.polyfit(frames[reference], centre, 1)
+            size = np.median(boxes[reference, 2:], axis=0)
+            continued = []
+            for frame in range(frames[edge] + step, frames[edge] + step * (max_frames + 2), step):
+                x, y = velocity * frame + intercept - size / 2
+                x0, y0 = max(x, 0.0), max(y, 0.0)
+                x1, y1 = min(x + size[0], width), min(y + size[1], height)
+                if x1 - x0 < 1 or y1 - y0 < 1:
+                    break
+                continued.append((frame, (x0, y0, x1 - x0, y1 - y0)))
+            else:
+                continue  # the motion does not take the object out of view soon: not a crossing
+            stop = next((k for k, (frame, _) in enumerate(continued)
+                         if frame in taken or (frame - limit) * step >= 0), len(continued))
+            continued = continued[:stop]  # not into the next run, the other end's frames or past the video
+            taken.update(frame for frame, _ in continued)
+            added_frames += [frame for frame, _ in continued]
+            added_boxes += [box for _, box in continued]
+    if not added_frames:
+        return track
+    every = np.concatenate([frames, added_frames])
+    order = np.argsort(every, kind="stable")
+    score = np.r_[track.score, np.full(len(added_frames), 0.5 * float(track.score.min()))]
+    points = None
+    if track.points is not None:
+        points = np.vstack([track.points, np.full((len(added_frames), 2), np.nan)])[order]
+    return dataclasses.replace(track, frames=every[order], boxes=np.vstack([boxes, added_boxes])[order],
+                               score=score[order], points=points)
+

@@ -65,8 +65,8 @@ def test_evaluate_writes_a_report(tmp_path: Path, venv_bin: Path) -> None:
     assert "| 1 |" in report and "| 3 |" in report and "TRAP robust" in report and "KCF" in report
     data = json.loads((tmp_path / "report" / "report.json").read_text())
     methods = data[0]["methods"]
-    assert list(methods) == ["paper", "+ one path per object", "+ label memory", "+ camera motion",
-                             "+ one object per cluster", "+ rejoin fragments", "+ core boxes", "+ grown boxes",
+    assert list(methods) == ["paper", "+ one path per object", "+ steps within reach", "+ label memory",
+                             "+ camera motion", "+ one object per cluster", "+ rejoin fragments", "+ core boxes", "+ grown boxes",
                              "+ filled gaps", "+ steady box size", "+ where objects meet",
                              "robust (+ across the border)"]
     assert all(0 <= o["box_p"] <= 1 for m in methods.values() for o in m["objects"])

@@ -22,7 +22,7 @@ def test_assignment_keeps_crossing_lookalikes_apart() -> None:
     order = np.lexsort((positions[:, 0], frames))
     starts = np.array([0, frames.size])
     graph = link_occurrences(starts, frames[order], positions[order], 40.0, 25)
-    chains = assign_occurrences(starts, frames[order], positions[order], 40.0, 25)
+    chains = assign_occurrences(starts, frames[order], positions[order], np.full(frames.size, 10.0), 40.0, 25, 0.8)
     assert np.unique(graph).size == 1
     assert np.unique(chains).size == 2
     left_to_right = chains[positions[order][:, 1] == 0.0]
@@ -32,10 +32,23 @@ def test_assignment_keeps_crossing_lookalikes_apart() -> None:
 def test_assignment_bridges_a_gap_with_prediction() -> None:
     frames = np.array([0, 1, 2, 3, 10, 11])
     positions = np.array([[0, 0], [4, 0], [8, 0], [12, 0], [40, 0], [44, 0]], dtype=float)
-    chains = assign_occurrences(np.array([0, 6]), frames, positions, 10.0, 8)
+    size = np.full(6, 5.0)
+    chains = assign_occurrences(np.array([0, 6]), frames, positions, size, 10.0, 8, 0.0)
     assert np.unique(chains).size == 1
-    chains = assign_occurrences(np.array([0, 6]), frames, positions, 10.0, 5)  # gap longer than tau
+    chains = assign_occurrences(np.array([0, 6]), frames, positions, size, 10.0, 5, 0.0)  # gap longer than tau
     assert np.unique(chains).size == 2
+
+
+def test_assignment_takes_no_step_the_size_of_the_pattern() -> None:
+    """A pattern 10 px wide moving 2 px a frame; at frame 5 only a look-alike 9 px off the path shows."""
+    frames = np.array([0, 1, 2, 3, 4, 5, 6, 7])
+    positions = np.array([[0, 0], [2, 0], [4, 0], [6, 0], [8, 0], [10, 9], [14, 0], [16, 0]], dtype=float)
+    size = np.full(8, 10.0)
+    chains = assign_occurrences(np.array([0, 8]), frames, positions, size, 40.0, 25, 0.8)
+    assert np.unique(chains[[0, 1, 2, 3, 4, 6, 7]]).size == 1  # the path waits over the stray and goes on
+    assert chains[5] != chains[0]
+    chains = assign_occurrences(np.array([0, 8]), frames, positions, size, 40.0, 25, 0.0)
+    assert chains[5] == chains[0]  # within eps only, the step onto it is taken
 
 
 def test_camera_transforms_recover_a_pan_and_speeds_separate_objects() -> None:

@@ -358,12 +358,15 @@ def link_occurrences(group_start, frame, position, eps, tau):
 
 
 @nb.njit(cache=True, nogil=True)
-def assign_occurrences(group_start, frame, position, eps, tau):
+def assign_occurrences(group_start, frame, position, extent, eps, tau, reach):
     """One object, one path (ours, TRAP_SPEC section 10): chain each pattern's occurrences frame by
     frame, each occurrence continuing at most one chain and each chain taking at most one
     occurrence per frame. A chain predicts its next position from its last velocity; pairs are
-    taken in order of distance to the prediction, within ``eps``; a chain waits up to ``tau``
-    frames for its next occurrence. Returns the chain of each occurrence (sorted input order).
+    taken in order of distance to the prediction, within ``eps`` and, if ``reach > 0``, within
+    ``reach`` times the ``extent`` of the chain's last occurrence times the square root of the
+    frames since (a step the size of the pattern is to another object, not along this one); a
+    chain waits up to ``tau`` frames for its next occurrence. Returns the chain of each
+    occurrence (sorted input order).
     """
     count = frame.size
     chain = np.full(count, -1, dtype=np.int64)
@@ -372,6 +375,7 @@ def assign_occurrences(group_start, frame, position, eps, tau):
     last_y = np.empty(count)
     vel_x = np.zeros(count)
     vel_y = np.zeros(count)
+    last_extent = np.empty(count)
     n_chains = 0
     eps2 = eps * eps
     for g in range(group_start.size - 1):
@@ -401,7 +405,8 @@ def assign_occurrences(group_start, frame, position, eps, tau):
                     dx = position[k, 0] - (last_x[c] + vel_x[c] * dt)
                     dy = position[k, 1] - (last_y[c] + vel_y[c] * dt)
                     d2 = dx * dx + dy * dy
-                    if d2 <= eps2:
+                    within = reach * last_extent[c]
+                    if d2 <= eps2 and (reach <= 0 or d2 <= within * within * dt):
                         costs[n_pairs] = d2
                         occ[n_pairs] = k
                         chn[n_pairs] = c
@@ -420,6 +425,7 @@ def assign_occurrences(group_start, frame, position, eps, tau):
                 last_frame[c] = t
                 last_x[c] = position[k, 0]
                 last_y[c] = position[k, 1]
+                last_extent[c] = extent[k]
             for k in range(i, j):
                 if chain[k] < 0:
                     c = n_chains
@@ -428,6 +434,7 @@ def assign_occurrences(group_start, frame, position, eps, tau):
                     last_frame[c] = t
                     last_x[c] = position[k, 0]
                     last_y[c] = position[k, 1]
+                    last_extent[c] = extent[k]
                     active[n_active] = c
                     n_active += 1
             i = j

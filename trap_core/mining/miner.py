@@ -101,8 +101,12 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
     pattern = np.searchsorted(pattern_hash, hashes)
     order = np.lexsort((frames, pattern))
     starts = np.searchsorted(pattern[order], np.arange(pattern_hash.size + 1))
-    link = assign_occurrences if params.linking == "assignment" else link_occurrences
-    component = link(starts, frames[order], position[order], float(params.eps), int(params.tau))
+    if params.linking == "assignment":
+        extent = (np.maximum(box[:, 2] - box[:, 0], box[:, 3] - box[:, 1]) + 1).astype(np.float64)
+        component = assign_occurrences(starts, frames[order], position[order], extent[order], float(params.eps),
+                                       int(params.tau), float(params.reach))
+    else:
+        component = link_occurrences(starts, frames[order], position[order], float(params.eps), int(params.tau))
     open_after = len(graphs) - open_ends[1] if open_ends[1] > 0 else len(graphs)
     st_pattern, st_offsets, st_rows = _components(component, pattern[order], frames[order], order,
                                                   params.freq_st_min, (open_ends[0], open_after))

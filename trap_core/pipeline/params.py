@@ -50,6 +50,9 @@ class TrapParams:
                                   "of the window; 0 = the whole video at once (paper)")
     method: str = _p("robust", "paper (TRAP as published) or robust (ours: README 'Method')")
     one_path: bool = _p(True, "robust: link each pattern's occurrences one to one (one object, one path)")
+    link_reach: float = _p(0.8, "robust: a pattern's path takes no step longer than this times the larger side of its "
+                                "last occurrence (x sqrt of the frames waited): such a step is onto another object; "
+                                "0 = eps only")
     label_memory: bool = _p(True, "robust: a region that continues one of the previous frame (near, similar area "
                                   "and colour) keeps its label, so slow light changes do not flip labels")
     min_speed: float = _p(0.03, "robust: image widths per second, relative to the camera and over tau/2 frames, "
@@ -102,6 +105,7 @@ class TrapParams:
             (self.n_objects >= 0 and 0 <= self.min_track_length <= 1, "n_objects >= 0, min_track_length within [0, 1]"),
             (self.separation >= 0 and 1 <= self.threads <= 64, "separation >= 0 and threads within 1..64"),
             (self.size_jump == 0 or self.size_jump > 1, "size_jump must be 0 (off) or more than 1"),
+            (self.link_reach >= 0, "link_reach must be >= 0"),
             (self.min_speed >= 0 and 0 <= self.rejoin_similarity <= 1 and 0 <= self.core_share <= 1,
              "min_speed >= 0, rejoin_similarity and core_share within [0, 1]"),
         ]
@@ -118,7 +122,8 @@ class TrapParams:
             return max(1, round(value * n_frames)) if value < 1 else int(value)
         return MiningParams(eps=self.eps, tau=self.tau, freq_st_min=frames(self.freq_st_min),
                             freq_min=frames(self.freq_min) if self.freq_min else None, max_faces=self.max_faces,
-                            linking="assignment" if self.method == "robust" and self.one_path else "graph")
+                            linking="assignment" if self.method == "robust" and self.one_path else "graph",
+                            reach=self.link_reach)
 
     @classmethod
     def descriptions(cls) -> dict[str, str]:

@@ -202,3 +202,22 @@ def test_label_memory_keeps_labels_through_a_slow_drift_but_not_a_jump() -> None
         kept.append(int(memory(graph).label[block]))
     assert len(set(plain[:10])) == 2 and len(set(kept[:10])) == 1  # quantised labels flip at 128; kept do not
     assert kept[10] == plain[10] != kept[9]  # a colour jump is a new label
+
+
+def test_label_memory_labels_a_region_that_appears_under_the_first_frame_light() -> None:
+    from trap_core.pipeline import TrapParams, frame_graph
+    from trap_core.rag import LabelMemory, colour_label
+    params = TrapParams(segmentation="colour")
+    memory = LabelMemory(params.colour_bins)
+    base = np.array([100.0, 150.0, 50.0])  # the object's colour under the first frame's light
+    for t in range(31):
+        gain = 1.0 + 0.01 * t  # the exposure rises 30 % (within 16 levels a frame)
+        rgb = np.zeros((60, 80, 3), np.uint8)
+        rgb[:, :40], rgb[:, 40:] = np.rint(np.multiply((60, 120, 180), gain)), np.rint(np.multiply((200, 100, 40), gain))
+        if t == 30:  # the object comes into view late, under brighter light
+            rgb[20:40, 30:50] = np.rint(base * gain)
+        graph = memory(frame_graph(rgb, params))
+    block = int(np.argmin(np.abs(graph.area - 400)))
+    assert memory.gain == pytest.approx(1.3, abs=0.01)
+    plain = colour_label(base[None] * 1.3, params.colour_bins)[0]
+    assert graph.label[block] == colour_label(base[None], params.colour_bins)[0] != plain

@@ -54,7 +54,9 @@ class TrapParams:
                                 "last occurrence (x sqrt of the frames waited): such a step is onto another object; "
                                 "0 = eps only")
     label_memory: bool = _p(True, "robust: a region that continues one of the previous frame (near, similar area "
-                                  "and colour) keeps its label, so slow light changes do not flip labels")
+                                  "and colour) keeps its label, and one that appears is labelled under the first "
+                                  "frame's light (gain measured on continuing regions), so light changes do not "
+                                  "flip labels")
     min_speed: float = _p(0.03, "robust: image widths per second, relative to the camera and over tau/2 frames, "
                                 "below which patterns (and, over tau frames, clusters) are background (0.03 = 0.75 "
                                 "px/frame at 640 px, 25 Hz); 0 = off")

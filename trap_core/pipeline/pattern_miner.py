@@ -27,7 +27,8 @@ class PatternMiner:
         self.seconds = 0.0
         self._graphs: list[PlaneGraph] = []
         self._windows: WindowedMiner | None = None
-        self._labels = LabelMemory() if params.method == "robust" and params.label_memory else None
+        self._labels = (LabelMemory(params.colour_bins) if params.method == "robust" and params.label_memory
+                        else None)
         if params.mining_window > 0:
             span = min(n_frames, params.mining_window) if n_frames else params.mining_window
             self._windows = WindowedMiner(params.mining(span), params.mining_window,

@@ -1,4 +1,4 @@
-"""Node labels that follow a region from frame to frame (ours).
+"""Node labels that follow a region from frame to frame, and the light (ours).
 
 A node's label is its mean colour cut into ``colour_bins`` levels per channel. When the light
 changes slowly (clouds, a camera's automatic exposure), every colour drifts and, one after
@@ -6,8 +6,16 @@ another, regions cross a level boundary: their label flips, and every pattern ho
 broken from that frame on. Here a region that continues one of the previous frame (its
 barycentre within half the square root of its area plus 3 px, its area within a factor 1.5,
 each colour channel within ``COLOUR_STEP`` of 256) keeps that region's label, so a label
-changes only when a region appears, or when its colour jumps. Labels are passed on from the
-previous frame's labels as kept, so a slow drift never flips one.
+changes only when a region appears, or when its colour jumps.
+
+A region that appears (an object entering the view, or coming back) is labelled from its colour
+under the light of the first frame: each region carries its colour divided by the light's gain
+when it appeared, and the gain of a frame (per channel) is the median, over the regions it
+continues, of their colour over that carried colour (kept while within 1 % of the last one, so
+noise does not move the labels of regions that appear). The gain is measured against colours
+carried since regions appeared, not multiplied frame to frame, so its error does not
+accumulate while the scene stays; an object seen again under other light gets its former
+labels back, and its patterns are the same structures (what rejoining fragments needs).
 """
 from __future__ import annotations
 
@@ -16,36 +24,58 @@ import dataclasses
 import numpy as np
 from scipy.spatial import cKDTree
 
-from trap_core.rag.plane_graph import PlaneGraph
+from trap_core.rag.plane_graph import PlaneGraph, colour_label
 
 AREA_RATIO = 1.5
 REACH_PX = 3.0
 COLOUR_STEP = 16.0  # per frame and channel: light changes far more slowly, a different region more
+STEADY = 0.01  # a gain within 1 % of the current one is noise, not a change of the light
+DARK = 16.0  # channels darker than this say little about the gain (noise, clipping)
 
 
 class LabelMemory:
-    """Call it on each frame's graph in order; it returns the graph with remembered labels."""
+    """Call it on each frame's graph in order; it returns the graph with remembered labels.
 
-    def __init__(self) -> None:
+    ``colour_bins``: levels per channel of the labels (as the graphs were built with).
+    """
+
+    def __init__(self, colour_bins: int = 4) -> None:
+        self._bins = colour_bins
         self._previous: PlaneGraph | None = None
+        self._carried = np.empty((0, 3))  # per region of the previous graph: its colour under the first light
+        self.gain = np.ones(3)
 
     def __call__(self, graph: PlaneGraph) -> PlaneGraph:
-        self._previous = self._remembered(graph)
-        return self._previous
-
-    def _remembered(self, graph: PlaneGraph) -> PlaneGraph:
-        """``graph`` with the labels of the previous frame's regions it continues."""
+        colour = graph.colour.astype(float)
         previous = self._previous
-        if previous is None or graph.n_nodes == 0 or previous.n_nodes == 0:
-            return graph
-        distance, nearest = cKDTree(previous.centroid).query(graph.centroid, k=1)
-        area = graph.area.astype(float)
-        their_area = previous.area[nearest].astype(float)
-        same = ((distance <= 0.5 * np.sqrt(area) + REACH_PX) & (their_area < AREA_RATIO * area)
-                & (their_area * AREA_RATIO > area)
-                & (np.abs(graph.colour - previous.colour[nearest]).max(axis=1) <= COLOUR_STEP))
-        if not same.any():
-            return graph
-        label = graph.label.copy()
-        label[same] = previous.label[nearest[same]]
-        return dataclasses.replace(graph, label=label)
+        same = np.zeros(graph.n_nodes, dtype=bool)
+        nearest = np.zeros(graph.n_nodes, dtype=np.int64)
+        if previous is not None and graph.n_nodes and previous.n_nodes:
+            distance, nearest = cKDTree(previous.centroid).query(graph.centroid, k=1)
+            area = graph.area.astype(float)
+            their_area = previous.area[nearest].astype(float)
+            same = ((distance <= 0.5 * np.sqrt(area) + REACH_PX) & (their_area < AREA_RATIO * area)
+                    & (their_area * AREA_RATIO > area)
+                    & (np.abs(colour - previous.colour[nearest]).max(axis=1) <= COLOUR_STEP))
+        if same.any():
+            gain = _gain(colour[same], self._carried[nearest[same]], self.gain)
+            if np.abs(gain / self.gain - 1).max() > STEADY:
+                self.gain = gain
+        carried = colour / self.gain
+        carried[same] = self._carried[nearest[same]]
+        label = colour_label(carried, self._bins)
+        if same.any():
+            label[same] = previous.label[nearest[same]]
+        graph = dataclasses.replace(graph, label=label)
+        self._previous, self._carried = graph, carried
+        return graph
+
+
+def _gain(colour: np.ndarray, carried: np.ndarray, fallback: np.ndarray) -> np.ndarray:
+    """Per channel: median of ``colour / carried`` over the regions bright enough in both."""
+    gain = fallback.copy()
+    for channel in range(3):
+        bright = (colour[:, channel] >= DARK) & (carried[:, channel] >= DARK)
+        if bright.any():
+            gain[channel] = np.median(colour[bright, channel] / carried[bright, channel])
+    return gain

@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """Benchmark: tracking quality of the defaults on synthetic videos with ground truth.
 
-Three sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
-presets, seeds 0-2), the variants looked at while the robust rules were chosen ("tuned"), and
-variants never looked at while choosing them ("held-out"). Prints, per video, the tracks found
+Four sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
+presets, seeds 0-2), the variants looked at while the robust rules were chosen ("tuned"),
+variants never looked at while choosing them ("held-out"), and frames larger than the working
+size ("larger", segmented scaled down to ``max_side``). Prints, per video, the tracks found
 without being told the number of objects, each object's box precision/recall (%) and MOTA /
 IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90 or better and
 the mean MOTA / IDF1. Graphs are cached (``--cache``), so a second run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,held-out] [-p name:=value]``.
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,held-out,larger] [-p name:=value]``.
 """
 from __future__ import annotations
 
@@ -45,13 +46,24 @@ HELD_OUT = [
     ("identical, noise 4, Felzenszwalb", dict(seed=27, identical=True, noise=4.0), "felzenszwalb"),
     ("distinct, illumination 8 %", dict(seed=28, illumination=0.08), "colour"),
 ]
-SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT}
+LARGER = [  # made after every rule above was chosen: frames larger than the working size (max_side)
+    ("distinct, 1280x720", dict(seed=41, width=1280, height=720), "colour"),
+    ("identical, 960x540, noise 2, Felzenszwalb", dict(seed=42, identical=True, width=960, height=540, noise=2.0),
+     "felzenszwalb"),
+    ("distinct, 960x540, noise 2, Felzenszwalb", dict(seed=44, width=960, height=540, noise=2.0), "felzenszwalb"),
+    ("distinct, 1280x720, noise 3, Felzenszwalb", dict(seed=45, width=1280, height=720, noise=3.0), "felzenszwalb"),
+    ("identical, 800x600, noise 2, Felzenszwalb", dict(seed=46, identical=True, width=800, height=600, noise=2.0),
+     "felzenszwalb"),
+]
+SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER}
 
 
 def _graphs(scene: dict, segmentation: str, cache: Path) -> tuple[list, list[dict[int, tuple]]]:
     """Plane graphs and ground-truth boxes of one video, from the cache when there."""
     params = TrapParams(segmentation=segmentation)
     key = "_".join(f"{k}{v}" for k, v in sorted(scene.items())) + f"_{segmentation}"
+    if max(scene.get("width", 640), scene.get("height", 480)) > params.max_side:
+        key += f"_side{params.max_side}"  # segmented scaled down
     path = cache / f"{key}.pkl"
     if path.exists():
         with open(path, "rb") as f:
@@ -65,7 +77,7 @@ def _graphs(scene: dict, segmentation: str, cache: Path) -> tuple[list, list[dic
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--sets", default="analogues,tuned,held-out", help="comma-separated: " + ", ".join(SETS))
+    parser.add_argument("--sets", default="analogues,tuned,held-out,larger", help="comma-separated: " + ", ".join(SETS))
     parser.add_argument("--cache", type=Path, default=Path.home() / ".cache" / "trap_ros" / "quality")
     parser.add_argument("-p", dest="overrides", action="append", default=[], type=parameter_assignment,
                         metavar="NAME:=VALUE", help="parameter for every run (as process_bag's -p)")

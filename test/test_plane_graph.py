@@ -221,3 +221,20 @@ def test_label_memory_labels_a_region_that_appears_under_the_first_frame_light()
     assert memory.gain == pytest.approx(1.3, abs=0.01)
     plain = colour_label(base[None] * 1.3, params.colour_bins)[0]
     assert graph.label[block] == colour_label(base[None], params.colour_bins)[0] != plain
+
+
+def test_a_large_frame_is_segmented_at_the_working_size_with_geometry_in_its_own_pixels() -> None:
+    from trap_core.pipeline import TrapParams, frame_graph
+    big = np.full((960, 1280, 3), 40, np.uint8)
+    big[100:300, 200:500] = (200, 30, 30)
+    big[500:900, 700:1280] = (30, 200, 30)  # touches the right border
+    graph = frame_graph(big, TrapParams(segmentation="colour", max_side=640))
+    full = frame_graph(big, TrapParams(segmentation="colour", max_side=0))
+    assert graph.n_nodes == full.n_nodes == 3 and graph.n_faces == full.n_faces
+    order, full_order = np.argsort(graph.area), np.argsort(full.area)
+    np.testing.assert_array_equal(graph.bbox[order], full.bbox[full_order])  # same pixels covered
+    np.testing.assert_array_equal(graph.area[order], full.area[full_order])
+    np.testing.assert_allclose(graph.centroid[order], full.centroid[full_order], atol=1e-3)
+    assert graph.bbox[:, 2].max() == 1279 and graph.bbox[:, 3].max() == 959
+    with pytest.raises(ValueError, match="max_side"):
+        TrapParams(max_side=8)

@@ -6,10 +6,12 @@ are in flight (memory stays flat).
 """
 from __future__ import annotations
 
+import dataclasses
 from collections import deque
 from collections.abc import Iterable, Iterator
 from concurrent.futures import Future, ThreadPoolExecutor
 
+import cv2
 import numpy as np
 
 from trap_core.pipeline.params import TrapParams
@@ -19,13 +21,40 @@ from trap_core.synthetic import SceneConfig, render
 
 
 def frame_graph(rgb: np.ndarray, params: TrapParams) -> PlaneGraph:
-    """Regions (segmentation or exact colours) and their plane graph for one frame."""
+    """Regions (segmentation or exact colours) and their plane graph for one frame.
+
+    A frame whose longer side exceeds ``params.max_side`` is segmented at that size (area
+    averaging; nearest pixels for exact-colour regions), so an object is cut into as many regions as at the size the defaults were made
+    for, whatever the camera's resolution; the graph's geometry is then given back in the
+    frame's own pixels.
+    """
+    height, width = rgb.shape[:2]
+    small = rgb
+    if params.max_side and max(height, width) > params.max_side:
+        factor = params.max_side / max(height, width)
+        size = (max(1, round(width * factor)), max(1, round(height * factor)))
+        exact = params.segmentation == "colour"  # exact colours must stay exact: no averaging
+        small = cv2.resize(rgb, size, interpolation=cv2.INTER_NEAREST if exact else cv2.INTER_AREA)
     if params.segmentation == "colour":
-        labels, n = colour_components(rgb)
+        labels, n = colour_components(small)
     else:
-        labels, n = felzenszwalb(rgb, k=params.k, sigma=params.sigma, min_size=params.min_size,
+        labels, n = felzenszwalb(small, k=params.k, sigma=params.sigma, min_size=params.min_size,
                                  threshold=params.threshold, connectivity=params.connectivity)
-    return build_plane_graph(labels, n, rgb, params.colour_bins, params.contact_tolerance)
+    graph = build_plane_graph(labels, n, small, params.colour_bins, params.contact_tolerance)
+    return graph if small is rgb else _in_frame_pixels(graph, width / small.shape[1], height / small.shape[0])
+
+
+def _in_frame_pixels(graph: PlaneGraph, scale_x: float, scale_y: float) -> PlaneGraph:
+    """``graph`` of a frame segmented ``scale`` times smaller, with positions, boxes, areas and
+    contact lengths in the frame's pixels (boxes: every pixel a region's pixels cover)."""
+    centroid = (graph.centroid + 0.5) * np.array([scale_x, scale_y], dtype=np.float32) - 0.5
+    box = graph.bbox.astype(float)
+    bbox = np.column_stack([np.floor(box[:, 0] * scale_x), np.floor(box[:, 1] * scale_y),
+                            np.ceil((box[:, 2] + 1) * scale_x) - 1, np.ceil((box[:, 3] + 1) * scale_y) - 1])
+    return dataclasses.replace(
+        graph, centroid=centroid.astype(np.float32), bbox=bbox.astype(np.int32),
+        area=np.rint(graph.area * scale_x * scale_y).astype(np.int32),
+        he_length=np.maximum(1, np.rint(graph.he_length * np.sqrt(scale_x * scale_y))).astype(np.int32))
 
 
 def graphs_of(frames: Iterable[np.ndarray], params: TrapParams) -> Iterator[PlaneGraph]:

@@ -12,7 +12,7 @@ from trap_core.segmentation import THRESHOLD_MODES
 SEGMENTATIONS = ("felzenszwalb", "colour")
 METHODS = ("paper", "robust")
 # Which node needs which parameters (the segmentation node: stages 1-2; the mining node: 3-7).
-GRAPH_STAGE = ("segmentation", "k", "sigma", "min_size", "threshold", "connectivity", "colour_bins",
+GRAPH_STAGE = ("segmentation", "k", "sigma", "min_size", "threshold", "connectivity", "max_side", "colour_bins",
                "contact_tolerance", "threads")
 
 
@@ -34,6 +34,9 @@ class TrapParams:
     min_size: int = _p(20, "regions smaller than this (pixels) are merged")
     threshold: str = _p("constant", "constant (paper: tau = k) or size (original: tau = k/|C|)")
     connectivity: int = _p(4, "pixel connectivity of the segmentation: 4 or 8")
+    max_side: int = _p(640, "px: frames whose longer side exceeds this are segmented scaled down to it, so objects "
+                            "get as many regions as at the size the defaults were made for; results stay in the "
+                            "frame's pixels (ours); 0 = full size")
     colour_bins: int = _p(4, "levels per colour channel of the node labels (ours)")
     contact_tolerance: float = _p(0.0, "drop contacts shorter than this x sqrt(smaller region area) px, so faces do "
                                        "not flicker with pixel rounding (ours); 0 = keep all (paper)")
@@ -96,6 +99,7 @@ class TrapParams:
             (self.k >= 0 and self.sigma >= 0 and self.min_size >= 0, "k, sigma and min_size must be >= 0"),
             (self.connectivity in (4, 8), "connectivity must be 4 or 8"),
             (1 <= self.colour_bins <= 256, "colour_bins must be within 1..256"),
+            (self.max_side == 0 or self.max_side >= 32, "max_side must be 0 (full size) or at least 32"),
             (self.contact_tolerance >= 0, "contact_tolerance must be >= 0"),
             (self.eps > 0 and self.tau >= 1, "eps must be > 0 and tau >= 1"),
             (self.freq_st_min > 0 and self.freq_min >= 0, "freq_st_min must be > 0 and freq_min >= 0"),

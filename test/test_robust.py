@@ -66,6 +66,22 @@ def test_camera_transforms_recover_a_pan_and_speeds_separate_objects() -> None:
     assert speed[:n_background].max() < 0.01 and speed[n_background] == pytest.approx(2.0, abs=1e-3)
 
 
+def test_camera_motion_is_what_the_frame_agrees_on_even_where_an_object_has_more_patterns() -> None:
+    rng = np.random.default_rng(2)
+    n_frames, n_background, n_object = 20, 12, 30  # one richly structured object: most patterns are on it
+    pan = np.column_stack([np.arange(n_frames) * 3.0, np.arange(n_frames) * 1.0])
+    world = rng.uniform(0, 600, size=(n_background, 2))
+    rows = [(s, t, world[s] + pan[t]) for s in range(n_background) for t in range(n_frames)]
+    parts = rng.uniform(0, 40, size=(n_object, 2))
+    rows += [(n_background + s, t, np.array([300.0, 200.0]) + parts[s] + [-2.0 * t, 0.0])
+             for s in range(n_object) for t in range(n_frames)]
+    rows.sort(key=lambda r: (r[0], r[1]))
+    paths = ObservedPaths(np.array([r[0] for r in rows]), np.array([r[1] for r in rows]),
+                          np.array([r[2] for r in rows]))
+    transforms = camera_transforms(paths, n_frames)
+    np.testing.assert_allclose(transforms[:, :2, 2], pan, atol=1e-3)
+
+
 def test_world_speed_over_a_lag_ignores_jitter_but_not_motion() -> None:
     rng = np.random.default_rng(1)
     frames = np.arange(100)

@@ -23,18 +23,18 @@ from trap_core.synthetic import SceneConfig, render
 def frame_graph(rgb: np.ndarray, params: TrapParams) -> PlaneGraph:
     """Regions (segmentation or exact colours) and their plane graph for one frame.
 
-    A frame whose longer side exceeds ``params.max_side`` is segmented at that size (area
-    averaging; nearest pixels for exact-colour regions), so an object is cut into as many regions as at the size the defaults were made
-    for, whatever the camera's resolution; the graph's geometry is then given back in the
-    frame's own pixels.
+    A frame whose longer side exceeds ``params.max_side`` is segmented at that size (nearest
+    pixels: averaging would blend the colours along every edge into strips of regions of their
+    own, and exact-colour regions must keep exact colours), so an object is cut into as many
+    regions as at the size the defaults were made for, whatever the camera's resolution; the
+    graph's geometry is then given back in the frame's own pixels.
     """
     height, width = rgb.shape[:2]
     small = rgb
     if params.max_side and max(height, width) > params.max_side:
         factor = params.max_side / max(height, width)
         size = (max(1, round(width * factor)), max(1, round(height * factor)))
-        exact = params.segmentation == "colour"  # exact colours must stay exact: no averaging
-        small = cv2.resize(rgb, size, interpolation=cv2.INTER_NEAREST if exact else cv2.INTER_AREA)
+        small = cv2.resize(rgb, size, interpolation=cv2.INTER_NEAREST)
     if params.segmentation == "colour":
         labels, n = colour_components(small)
     else:

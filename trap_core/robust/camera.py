@@ -1,11 +1,15 @@
 """Camera motion from the patterns themselves, and each pattern's motion relative to the scene.
 
 Beyond the paper (TRAP_SPEC section 10, "object versus background"): the background moves with
-the camera, so most patterns move together. Per pair of consecutive frames, a similarity
-transform (rotation, scale, translation) is fitted by least median of squares (robust to
-up to half of the patterns moving on their own) to the displacements of the
-patterns seen in both frames; chaining them maps every frame into the first frame's
-coordinates ("world"). In the world, background patterns stand still and objects move.
+the camera, so most of the frame moves together. Per pair of consecutive frames, a similarity
+transform (rotation, scale, translation) is fitted to the displacements of the patterns seen in
+both frames. Patterns are not votes: an object with many structures (windows, wheels) over a
+plain background holds most of them, and a fit robust to half of the patterns moving on their
+own then follows the object. So each cell of a ``GRID`` x ``GRID`` grid over the frame votes
+once (the median displacement of its patterns); the transform most cells agree on (RANSAC,
+within ``AGREE_PX``) is refined by least median of squares on the patterns it fits. Chaining
+the transforms maps every frame into the first frame's coordinates ("world"). In the world,
+background patterns stand still and objects move.
 """
 from __future__ import annotations
 
@@ -13,6 +17,9 @@ import cv2
 import numpy as np
 
 from trap_core.clustering import ClusterSummary, ObservedPaths
+
+GRID = 12  # cells per side of the frame, one vote each for the camera's motion
+AGREE_PX = 1.0  # a cell (a pattern) agrees with a camera motion that puts it within this
 
 
 def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:
@@ -24,19 +31,39 @@ def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:
     src_rows, when = src_rows[order], when[order]
     bounds = np.searchsorted(when, np.arange(n_frames + 1))
     transforms = np.tile(np.eye(3), (n_frames, 1, 1))
+    extent = paths.position.max(axis=0) + 1 if len(paths.frame) else np.ones(2)
     for t in range(n_frames - 1):
         rows = src_rows[bounds[t]:bounds[t + 1]]
         step_matrix = np.eye(3)
+        src, dst = paths.position[rows].astype(np.float32), paths.position[rows + 1].astype(np.float32)
         if rows.size >= 3:
-            fitted, _ = cv2.estimateAffinePartial2D(paths.position[rows].astype(np.float32),
-                                                    paths.position[rows + 1].astype(np.float32),
-                                                    method=cv2.LMEDS)
+            fitted = _step(src, dst, extent)
             if fitted is not None:
                 step_matrix[:2] = fitted
         elif rows.size:
-            step_matrix[:2, 2] = np.median(paths.position[rows + 1] - paths.position[rows], axis=0)
+            step_matrix[:2, 2] = np.median(dst - src, axis=0)
         transforms[t + 1] = step_matrix @ transforms[t]
     return transforms
+
+
+def _step(src: np.ndarray, dst: np.ndarray, extent: np.ndarray) -> np.ndarray | None:
+    """(2, 3) similarity taking ``src`` to ``dst`` (patterns' positions in two frames): the one
+    most cells of the frame agree on, refined on the patterns it fits."""
+    cell = np.minimum((src / extent * GRID).astype(np.int64), GRID - 1) @ np.array([GRID, 1])
+    cells, inverse = np.unique(cell, return_inverse=True)
+    if cells.size >= 3:
+        order = np.argsort(inverse, kind="stable")
+        groups = np.split(order, np.cumsum(np.bincount(inverse))[:-1])
+        cell_src = np.array([np.median(src[g], axis=0) for g in groups], dtype=np.float32)
+        cell_dst = np.array([np.median(dst[g], axis=0) for g in groups], dtype=np.float32)
+        consensus, _ = cv2.estimateAffinePartial2D(cell_src, cell_dst, method=cv2.RANSAC,
+                                                   ransacReprojThreshold=AGREE_PX)
+        if consensus is not None:
+            fits = np.linalg.norm(src @ consensus[:, :2].T + consensus[:, 2] - dst, axis=1) <= AGREE_PX
+            if fits.sum() >= 3:
+                src, dst = src[fits], dst[fits]
+    fitted, _ = cv2.estimateAffinePartial2D(src, dst, method=cv2.LMEDS)
+    return fitted
 
 
 def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, lag: int = 1,

@@ -238,3 +238,12 @@ def test_a_large_frame_is_segmented_at_the_working_size_with_geometry_in_its_own
     assert graph.bbox[:, 2].max() == 1279 and graph.bbox[:, 3].max() == 959
     with pytest.raises(ValueError, match="max_side"):
         TrapParams(max_side=8)
+
+
+def test_pixel_distances_are_pixels_of_the_working_size() -> None:
+    from trap_core.pipeline import TrapParams
+    params = TrapParams(eps=40.0, separation=30.0, max_side=640)
+    assert params.in_frame_pixels(640, 480) is params and params.in_frame_pixels(320, 240) is params
+    big = params.in_frame_pixels(1920, 1080)  # segmented 3x smaller: every distance 3x larger in its pixels
+    assert (big.eps, big.separation) == (120.0, 90.0)
+    assert TrapParams(max_side=0).in_frame_pixels(1920, 1080).eps == 40.0

@@ -40,7 +40,8 @@ class TrapParams:
     colour_bins: int = _p(4, "levels per colour channel of the node labels (ours)")
     contact_tolerance: float = _p(0.0, "drop contacts shorter than this x sqrt(smaller region area) px, so faces do "
                                        "not flicker with pixel rounding (ours); 0 = keep all (paper)")
-    eps: float = _p(40.0, "px: occurrences closer than this in frames at most tau apart are linked")
+    eps: float = _p(40.0, "px (of the working size, max_side): occurrences closer than this in frames at most tau "
+                          "apart are linked")
     tau: int = _p(25, "frames: temporal threshold of occurrence linking")
     freq_st_min: float = _p(36.0, "minimum frames of a spatio-temporal pattern: >= 1 frames (36 = 1.4 s at 25 Hz), "
                                   "< 1 share of the video")
@@ -86,8 +87,8 @@ class TrapParams:
     n_objects: int = _p(0, "objects to track; 0 = found without supervision (ours)")
     length_tolerance: float = _p(0.1, "share of the video: clusters this close to the longest compete")
     min_track_length: float = _p(0.25, "share of the video a track must cover when n_objects = 0 (ours)")
-    separation: float = _p(40.0, "px: a cluster this close to kept tracks in most of its frames is not a new "
-                                 "object (ours)")
+    separation: float = _p(40.0, "px (of the working size, max_side): a cluster this close to kept tracks in most "
+                                 "of its frames is not a new object (ours)")
     threads: int = _p(2, "segmentation threads")
 
     def __post_init__(self) -> None:
@@ -118,6 +119,16 @@ class TrapParams:
         for ok, message in checks:
             if not ok:
                 raise ParameterError(message)
+
+    def in_frame_pixels(self, width: float, height: float) -> TrapParams:
+        """These parameters for frames of ``width`` x ``height``: the pixel distances (``eps``,
+        ``separation``) are pixels of the working size, so they grow with frames segmented
+        scaled down (``max_side``), as everything the frame holds does."""
+        side = max(width, height)
+        if not self.max_side or side <= self.max_side:
+            return self
+        scale = side / self.max_side
+        return dataclasses.replace(self, eps=self.eps * scale, separation=self.separation * scale)
 
     def as_dict(self) -> dict[str, Any]:
         return dataclasses.asdict(self)

@@ -60,6 +60,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         for graph in graphs:
             miner.add(graph)
     mined = miner.finish()
+    params = params.in_frame_pixels(width, height)
     seconds["mining"] = miner.seconds
     start = time.perf_counter()
     observed = observed_paths(mined)  # each pattern's mean position per frame: camera motion and trajectories

@@ -52,10 +52,7 @@ def _step(src: np.ndarray, dst: np.ndarray, extent: np.ndarray) -> np.ndarray | 
     cell = np.minimum((src / extent * GRID).astype(np.int64), GRID - 1) @ np.array([GRID, 1])
     cells, inverse = np.unique(cell, return_inverse=True)
     if cells.size >= 3:
-        order = np.argsort(inverse, kind="stable")
-        groups = np.split(order, np.cumsum(np.bincount(inverse))[:-1])
-        cell_src = np.array([np.median(src[g], axis=0) for g in groups], dtype=np.float32)
-        cell_dst = np.array([np.median(dst[g], axis=0) for g in groups], dtype=np.float32)
+        cell_src, cell_dst = _cell_medians(src, inverse, cells.size), _cell_medians(dst, inverse, cells.size)
         consensus, _ = cv2.estimateAffinePartial2D(cell_src, cell_dst, method=cv2.RANSAC,
                                                    ransacReprojThreshold=AGREE_PX)
         if consensus is not None:
@@ -64,6 +61,17 @@ def _step(src: np.ndarray, dst: np.ndarray, extent: np.ndarray) -> np.ndarray | 
                 src, dst = src[fits], dst[fits]
     fitted, _ = cv2.estimateAffinePartial2D(src, dst, method=cv2.LMEDS)
     return fitted
+
+
+def _cell_medians(points: np.ndarray, cell: np.ndarray, n_cells: int) -> np.ndarray:
+    """(n_cells, 2) float32: per cell (0..n_cells-1, each holding points), the median of its points."""
+    count = np.bincount(cell, minlength=n_cells)
+    first = np.r_[0, np.cumsum(count)[:-1]]
+    out = np.empty((n_cells, 2), dtype=np.float32)
+    for axis in (0, 1):
+        ordered = points[np.lexsort((points[:, axis], cell)), axis]
+        out[:, axis] = 0.5 * (ordered[first + (count - 1) // 2] + ordered[first + count // 2])
+    return out
 
 
 def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, lag: int = 1,

@@ -8,7 +8,8 @@ size ("larger", segmented scaled down to ``max_side``). Prints, per video, the t
 without being told the number of objects, each object's box precision/recall (%) and MOTA /
 IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90 or better and
 the mean MOTA / IDF1. Graphs are cached (``--cache``), so a second run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,held-out,larger] [-p name:=value]``.
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,held-out,larger] [-p name:=value]``
+(segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
 
@@ -21,7 +22,7 @@ import numpy as np
 
 from trap_core.cli import parameter_assignment
 from trap_core.evaluation import match_objects, mot_measures
-from trap_core.pipeline import TrapParams, synthetic_graphs, track
+from trap_core.pipeline import GRAPH_STAGE, TrapParams, synthetic_graphs, track
 from trap_core.synthetic import PRESETS, SceneConfig
 
 ANALOGUES = [(f"{preset} seed {seed}", dict(seed=seed, **PRESETS[preset]), "colour")
@@ -58,12 +59,21 @@ LARGER = [  # made after every rule above was chosen: frames larger than the wor
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER}
 
 
-def _graphs(scene: dict, segmentation: str, cache: Path) -> tuple[list, list[dict[int, tuple]]]:
-    """Plane graphs and ground-truth boxes of one video, from the cache when there."""
-    params = TrapParams(segmentation=segmentation)
+def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None = None,
+            ) -> tuple[list, list[dict[int, tuple]]]:
+    """Plane graphs and ground-truth boxes of one video, from the cache when there.
+
+    ``overrides`` of segmentation and graph parameters (``GRAPH_STAGE``) make graphs of their own.
+    """
+    graph_overrides = {k: v for k, v in (overrides or {}).items() if k in GRAPH_STAGE and k != "threads"}
+    params = TrapParams.from_mapping({"segmentation": segmentation, **graph_overrides})
     key = "_".join(f"{k}{v}" for k, v in sorted(scene.items())) + f"_{segmentation}"
-    if max(scene.get("width", 640), scene.get("height", 480)) > params.max_side:
+    key += "".join(f"_{k}{v}" for k, v in sorted(graph_overrides.items()) if k != "max_side")
+    side = max(scene.get("width", 640), scene.get("height", 480))
+    if params.max_side and side > params.max_side:
         key += f"_side{params.max_side}"  # segmented scaled down
+    elif side > TrapParams().max_side:
+        key += "_full"  # segmented at full size where the defaults scale down
     path = cache / f"{key}.pkl"
     if path.exists():
         with open(path, "rb") as f:
@@ -88,7 +98,7 @@ def main() -> None:
         print("|---|---|---|---|---|---|---|")
         products, good, mota, id_f1 = [], [], [], []
         for label, scene, segmentation in videos:
-            graphs, truth = _graphs(scene, segmentation, args.cache)
+            graphs, truth = _graphs(scene, segmentation, args.cache, dict(args.overrides))
             params = TrapParams.from_mapping({"segmentation": segmentation, **dict(args.overrides)})
             start = time.perf_counter()
             result = track(graphs, params)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import shutil
+import signal
 import sys
 import threading
 import time
@@ -83,7 +84,11 @@ def _main() -> int:
     if (args.out / "tracks.mcap").exists():
         shutil.rmtree(args.out / "tracks.mcap")
     args.out.mkdir(parents=True, exist_ok=True)
-    # SIGINT is ours: the nodes must stay usable to finish on the frames read so far.
+    # SIGINT is ours: the nodes must stay usable to finish on the frames read so far. The handler
+    # only sets a flag the main loop polls: a KeyboardInterrupt raised wherever the main thread is
+    # (a finaliser run by the garbage collector swallows it) could be lost, and Ctrl-C with it.
+    interrupt = threading.Event()
+    previous_handler = signal.signal(signal.SIGINT, lambda signum, frame: interrupt.set())
     rclpy.init(args=["process_bag", "--ros-args", *ros_args], signal_handler_options=SignalHandlerOptions.NO)
     nodes = []
     try:
@@ -107,22 +112,23 @@ def _main() -> int:
         spinner = threading.Thread(target=executor.spin, name="trap-executor", daemon=True)
         spinner.start()
         reader.start()
-        try:
-            while not mining.done.wait(timeout=0.2):
-                if reader.error and reader.finished.is_set():
-                    break
-                if len(mining.graphs) > meter.done:
-                    meter.advance(len(mining.graphs) - meter.done)
-        except KeyboardInterrupt:
+        while not mining.done.wait(timeout=0.2) and not interrupt.is_set():
+            if reader.error and reader.finished.is_set():
+                break
+            if len(mining.graphs) > meter.done:
+                meter.advance(len(mining.graphs) - meter.done)
+        if interrupt.is_set() and not mining.done.is_set():
             # Stop reading; the reader announces what it published, the frames in flight are
-            # segmented and mined, and the mining node tracks over all of them as at a normal end.
+            # segmented and mined, and the mining node tracks over all of them as at a normal end
+            # (within a minute; a second Ctrl-C tracks at once over what has arrived).
             interrupted = True
+            interrupt.clear()
             reader.stop()
-            try:
-                if not mining.done.wait(timeout=60):
+            deadline = time.monotonic() + 60
+            while not mining.done.wait(timeout=0.2):
+                if interrupt.is_set() or time.monotonic() > deadline:
                     mining.finish()
-            except KeyboardInterrupt:
-                mining.finish()
+                    break
         meter.advance(len(mining.graphs) - meter.done)
         meter.finish()
         executor.shutdown(timeout_sec=5)
@@ -143,6 +149,7 @@ def _main() -> int:
             node.destroy_node()
         if rclpy.ok():
             rclpy.shutdown()
+        signal.signal(signal.SIGINT, previous_handler)
 
 
 def main() -> None:

@@ -244,6 +244,6 @@ def test_pixel_distances_are_pixels_of_the_working_size() -> None:
     from trap_core.pipeline import TrapParams
     params = TrapParams(eps=40.0, separation=30.0, max_side=640)
     assert params.in_frame_pixels(640, 480) is params and params.in_frame_pixels(320, 240) is params
-    big = params.in_frame_pixels(1920, 1080)  # segmented 3x smaller: every distance 3x larger in its pixels
-    assert (big.eps, big.separation) == (120.0, 90.0)
-    assert TrapParams(max_side=0).in_frame_pixels(1920, 1080).eps == 40.0
+    big = params.in_frame_pixels(1920, 1080)  # segmented 3x smaller: objects 3x larger in its pixels
+    assert (big.eps, big.separation) == (40.0, 90.0)
+    assert TrapParams(max_side=0).in_frame_pixels(1920, 1080).separation == 40.0

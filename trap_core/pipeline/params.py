@@ -40,8 +40,7 @@ class TrapParams:
     colour_bins: int = _p(4, "levels per colour channel of the node labels (ours)")
     contact_tolerance: float = _p(0.0, "drop contacts shorter than this x sqrt(smaller region area) px, so faces do "
                                        "not flicker with pixel rounding (ours); 0 = keep all (paper)")
-    eps: float = _p(40.0, "px (of the working size, max_side): occurrences closer than this in frames at most tau "
-                          "apart are linked")
+    eps: float = _p(40.0, "px: occurrences closer than this in frames at most tau apart are linked")
     tau: int = _p(25, "frames: temporal threshold of occurrence linking")
     freq_st_min: float = _p(36.0, "minimum frames of a spatio-temporal pattern: >= 1 frames (36 = 1.4 s at 25 Hz), "
                                   "< 1 share of the video")
@@ -121,14 +120,15 @@ class TrapParams:
                 raise ParameterError(message)
 
     def in_frame_pixels(self, width: float, height: float) -> TrapParams:
-        """These parameters for frames of ``width`` x ``height``: the pixel distances (``eps``,
-        ``separation``) are pixels of the working size, so they grow with frames segmented
-        scaled down (``max_side``), as everything the frame holds does."""
+        """These parameters for frames of ``width`` x ``height``: ``separation`` is in pixels of
+        the working size, so it grows with frames segmented scaled down (``max_side``), as the
+        objects do. ``eps`` stays in frame pixels: it only bounds a link whose step is already
+        bounded by the pattern's own size (``link_reach``), and scaling it too was measured worse
+        (more links across look-alikes)."""
         side = max(width, height)
         if not self.max_side or side <= self.max_side:
             return self
-        scale = side / self.max_side
-        return dataclasses.replace(self, eps=self.eps * scale, separation=self.separation * scale)
+        return dataclasses.replace(self, separation=self.separation * side / self.max_side)
 
     def as_dict(self) -> dict[str, Any]:
         return dataclasses.asdict(self)

@@ -29,18 +29,13 @@ class PatternMiner:
         self._windows: WindowedMiner | None = None
         self._labels = (LabelMemory(params.colour_bins) if params.method == "robust" and params.label_memory
                         else None)
-        self._span = min(n_frames, params.mining_window) if n_frames else params.mining_window
-        self._sized = False
+        if params.mining_window > 0:
+            span = min(n_frames, params.mining_window) if n_frames else params.mining_window
+            self._windows = WindowedMiner(params.mining(span), params.mining_window,
+                                          choose_params=self._auto_params if params.auto_frequency else None)
 
     def add(self, graph: PlaneGraph) -> None:
         start = time.perf_counter()
-        if not self._sized:  # the first frame gives the size: pixel distances in the working size's pixels
-            self._sized = True
-            width, height = (float(graph.bbox[:, axis].max(initial=0) + 1) for axis in (2, 3))
-            self.params = self.params.in_frame_pixels(width, height)
-            if self.params.mining_window > 0:
-                self._windows = WindowedMiner(self.params.mining(self._span), self.params.mining_window,
-                                              choose_params=self._auto_params if self.params.auto_frequency else None)
         if self._labels is not None:
             graph = self._labels(graph)
         if self._windows is None:

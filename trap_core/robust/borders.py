@@ -7,15 +7,14 @@ would be had it kept its motion: its box when last fully in view moved at its ve
 those frames, clipped to the image. A track is continued so when its box reaches the border
 (:func:`reaches_border`) where it ends (starts), for as long as that box overlaps the image, at
 most ``max_frames``, and never into frames the track already covers. Such frames have no
-patterns of their own (``points`` NaN) and half the track's lowest observed confidence.
+patterns of their own (:func:`with_inferred`).
 """
 from __future__ import annotations
-
-import dataclasses
 
 import numpy as np
 
 from trap_core.clustering import Track
+from trap_core.robust.gaps import with_inferred
 from trap_core.robust.rejoin import reaches_border
 
 SIZE_RATIO = 1.25  # a box in view this much smaller than the track's usual one may be of a cut part
@@ -87,12 +86,4 @@ def continue_to_border(track: Track, n_frames: int, width: float, height: float,
             added_boxes += [box for _, box in continued]
     if not added_frames:
         return track
-    every = np.concatenate([frames, added_frames])
-    order = np.argsort(every, kind="stable")
-    score = np.r_[track.score, np.full(len(added_frames), 0.5 * float(track.score.min()))]
-    points = None
-    if track.points is not None:
-        points = np.vstack([track.points, np.full((len(added_frames), 2), np.nan)])[order]
-    return dataclasses.replace(track, frames=every[order], boxes=np.vstack([boxes, added_boxes])[order],
-                               score=score[order], points=points)
-
+    return with_inferred(track, np.array(added_frames), np.array(added_boxes))

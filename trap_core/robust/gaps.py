@@ -24,13 +24,19 @@ def fill_gaps(track: Track, max_gap: int) -> Track:
     if not short.any():
         return track
     missing = np.concatenate([np.arange(a + 1, b) for a, b in zip(frames[:-1][short], frames[1:][short])])
-    every = np.sort(np.concatenate([frames, missing]))
-    observed = np.isin(every, frames)
-    boxes = np.column_stack([np.interp(every, frames, track.boxes[:, k]) for k in range(4)])
-    score = np.full(every.size, 0.5 * float(track.score.min()))
-    score[observed] = track.score
+    boxes = np.column_stack([np.interp(missing, frames, track.boxes[:, k]) for k in range(4)])
+    return with_inferred(track, missing, boxes)
+
+
+def with_inferred(track: Track, frames: np.ndarray, boxes: np.ndarray) -> Track:
+    """The track with boxes added in ``frames`` (which it does not cover), where the object is
+    inferred, not seen: no patterns of their own (``points`` NaN), half the track's lowest
+    observed confidence."""
+    every = np.concatenate([track.frames, frames])
+    order = np.argsort(every, kind="stable")
+    score = np.r_[track.score, np.full(len(frames), 0.5 * float(track.score.min()))]
     points = None
     if track.points is not None:
-        points = np.full((every.size, 2), np.nan)
-        points[observed] = track.points
-    return dataclasses.replace(track, frames=every, boxes=boxes, score=score, points=points)
+        points = np.vstack([track.points, np.full((len(frames), 2), np.nan)])[order]
+    return dataclasses.replace(track, frames=every[order], boxes=np.vstack([track.boxes, boxes])[order],
+                               score=score[order], points=points)

@@ -44,8 +44,7 @@ def continue_to_border(track: Track, n_frames: int, width: float, height: float,
     if frames.size < 3:
         return track
     boxes = track.boxes.astype(float)
-    whole = ((boxes[:, 0] > 0) & (boxes[:, 1] > 0) & (boxes[:, 0] + boxes[:, 2] < width)
-             & (boxes[:, 1] + boxes[:, 3] < height))
+    whole = ~reaches_border(boxes, width, height, margin=0.0)  # fully in view
     if not whole.any():
         return track
     ratio = boxes[:, 2:] / np.median(boxes[whole, 2:], axis=0)

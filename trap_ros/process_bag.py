@@ -9,6 +9,7 @@ process on a multi-threaded executor; results written to ``--out``:
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import shutil
 import signal
 import sys
@@ -24,7 +25,7 @@ from rclpy.signals import SignalHandlerOptions
 
 from trap_core.cli import UsageError, parameter_assignment, run_main
 from trap_core.outputs import Thumbnails
-from trap_core.pipeline import BagRun, ParameterError, TrapParams
+from trap_core.pipeline import GRAPH_STAGE, BagRun, ParameterError, TrapParams
 from trap_core.pipeline.bag_run import write_outputs
 from trap_core.progress import Progress
 from trap_ros.bag_reader_node import BagReaderNode
@@ -136,7 +137,10 @@ def _main() -> int:
             raise UsageError(reader.error)
         seconds = {"total": time.perf_counter() - start, **(mining.result.seconds if mining.result else {})}
         run = BagRun(reader.stream.topic, len(mining.graphs), mining.graphs, mining.result, seconds, {}, interrupted)
-        write_outputs(run, args.bag, args.out, mining.params, keeper.images, keeper.scale)
+        # Each node holds the parameters of its own stages; the summary reports the run's.
+        graph_stage = {name: getattr(segmentation.params, name) for name in GRAPH_STAGE}
+        params = dataclasses.replace(mining.params, **graph_stage)
+        write_outputs(run, args.bag, args.out, params, keeper.images, keeper.scale)
         run.outputs["tracks.mcap"] = str(write_results_bag(args.out / "tracks.mcap", mining.published))
         tracks = len(mining.result.tracks) if mining.result else 0
         print(f"{tracks} tracks over {run.frames} frames{' (interrupted)' if interrupted else ''}; "

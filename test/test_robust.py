@@ -177,6 +177,23 @@ def test_border_contacts_of_first_and_last_boxes() -> None:
     assert starts.tolist() == [True, True] and ends.tolist() == [False, False]
 
 
+def test_border_share_counts_occurrences_cut_by_the_edge_per_cluster() -> None:
+    """Only regions reaching the edge itself count (margin 0); each cluster's share is over its
+    patterns' occurrences."""
+    from trap_core.mining import MiningResult
+    from trap_core.robust import border_share
+    box = np.array([[0, 0, 700, 650],       # pattern 0: a large region cut by the view, twice
+                    [10, 0, 720, 640],
+                    [300, 100, 340, 140],   # pattern 1: inside
+                    [2, 100, 42, 140],      # pattern 2: 2 px from the left edge (inside) ...
+                    [1240, 100, 1279, 140]], dtype=np.float32)  # ... then at the right edge
+    empty = np.zeros(3)
+    result = MiningResult(empty, empty, empty, np.arange(5), np.zeros(5, int), np.zeros((5, 2)), box, box,
+                          np.zeros((5, 3), int), np.arange(3), np.array([0, 2, 3, 5]), np.arange(5))
+    share = border_share(result, np.array([0, 1, 2]), np.array([0, 1, 1]), 1280, 720)
+    assert share.tolist() == [1.0, 1 / 3]
+
+
 def _lookalike_pair(n: int = 80) -> tuple[np.ndarray, np.ndarray]:
     """Two 40x30 look-alikes moving right side by side (b 60 px right of a, 10 px lower); from
     frame 20 to 39 they touch, and both tracks' boxes are the pair's box."""

@@ -13,7 +13,7 @@ from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
-from trap_core.robust import (border_contacts, camera_transforms, cluster_world_speed, continue_to_border, fill_gaps,
+from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed, continue_to_border, fill_gaps,
                               grow_boxes, pattern_sizes, rejoin_fragments, separate_groups, split_mixed, world_speed)
 
 
@@ -87,8 +87,10 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
                                   border_contacts(mined, clustered, width, height), occurrences)
     summary = summarise(labels, sub_paths, occurrences, n_frames)
     moving = None
-    if robust and params.min_speed > 0:  # the whole cluster too: averaged, noise no longer passes for motion
-        moving = cluster_world_speed(summary, transforms, params.tau) >= still_below
+    if robust and params.min_speed > 0:  # the whole cluster too: averaged, noise no longer passes for motion;
+        # and mostly seen whole (a large region cut by the view "moves" as the camera pans)
+        moving = ((cluster_world_speed(summary, transforms, params.tau) >= still_below)
+                  & (border_share(mined, clustered, labels, width, height) <= 0.5))
     selected = select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
                                params.min_track_length, params.separation, eligible=moving)
     all_labels = np.full(mined.n_st, -1, dtype=np.int64)

@@ -97,6 +97,18 @@ def border_contacts(result: MiningResult, patterns: np.ndarray, width: int, heig
     return touches(first), touches(last)
 
 
+def border_share(result: MiningResult, patterns: np.ndarray, labels: np.ndarray, width: int,
+                 height: int) -> np.ndarray:
+    """(C,) share of each cluster's occurrences (``labels``: cluster of each of ``patterns``) whose
+    regions reach the image's edge. Regions cut by the view have barycentres that move with
+    the crop, not with what they show: a cluster seen mostly so is no evidence of motion."""
+    rows, owner = result.rows_of(patterns)
+    box = result.occ_box[rows].astype(float)
+    cut = reaches_border(np.column_stack([box[:, :2], box[:, 2:] - box[:, :2] + 1]), width, height, margin=0.0)
+    cluster = labels[owner]
+    return np.bincount(cluster, weights=cut) / np.maximum(np.bincount(cluster), 1)
+
+
 def reaches_border(boxes: np.ndarray, width: float, height: float, margin: float = 0.25) -> np.ndarray:
     """Whether boxes ``(x, y, w, h)`` (N, 4) come within ``margin`` times their own size of the
     image border: the object is entering or leaving the view."""

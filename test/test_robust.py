@@ -421,3 +421,30 @@ def test_a_track_entering_is_continued_back_and_a_stop_at_the_border_is_not() ->
     assert continue_to_border(parked, 100, 200, 100) is parked  # it stands at the border: no crossing
     inside = Track(3, frames, np.tile([100.0, 30.0, 20.0, 10.0], (20, 1)), np.ones(20), 3, None)
     assert continue_to_border(inside, 100, 200, 100) is inside
+
+
+def test_two_tracks_on_one_object_become_one() -> None:
+    """Same box (a few px off) over the 60 frames both cover: one track, with the frames of both;
+    the longer one's boxes where they overlap, ids renumbered from 1."""
+    from trap_core.robust import merge_duplicates
+    frames = np.arange(200)
+    box = np.column_stack([100 + frames, np.full(200, 50.0), np.full(200, 40.0), np.full(200, 30.0)])
+    other = _as_track(1, frames[:50], box[:50] + [20.0, 0, 0, 0])   # another object, elsewhere
+    long_one = _as_track(2, frames[40:160], box[40:160])
+    short_one = _as_track(3, frames[100:200], box[100:200] + [3.0, 2.0, 0, 0])
+    out = merge_duplicates([other, long_one, short_one], min_common=25)
+    assert [t.track_id for t in out] == [1, 2] and len(out[0]) == 50
+    assert out[1].frames.tolist() == list(range(40, 200))
+    np.testing.assert_array_equal(out[1].boxes[:120], box[40:160])       # the longer one's boxes
+    np.testing.assert_array_equal(out[1].boxes[120:], short_one.boxes[60:])
+
+
+def test_lookalikes_overlapped_for_a_while_and_a_part_keep_their_tracks() -> None:
+    from trap_core.robust import merge_duplicates
+    a, b = _lookalike_pair(100)
+    b[20:40] = a[20:40]                       # together for 20 of their 100 shared frames
+    frames = np.arange(100)
+    part = a * [1.0, 1.0, 0.5, 0.5]           # the object's upper left quarter: IoU 0.25
+    tracks = [_as_track(1, frames, a), _as_track(2, frames, b), _as_track(3, frames, part)]
+    assert len(merge_duplicates(tracks, min_common=25)) == 3
+    assert len(merge_duplicates([tracks[0], _as_track(2, frames[:20], a[:20])], min_common=25)) == 2  # too short

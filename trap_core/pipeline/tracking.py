@@ -14,7 +14,7 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed, continue_to_border, fill_gaps,
-                              grow_boxes, pattern_sizes, rejoin_fragments, separate_groups, split_mixed, world_speed)
+                              grow_boxes, merge_duplicates, pattern_sizes, rejoin_fragments, separate_groups, split_mixed, world_speed)
 
 
 @dataclass
@@ -101,6 +101,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         tracks = [grow_boxes(t, graphs, transforms, lag=max(1, params.tau // 5)) for t in tracks]
     if robust and params.fill_gaps:
         tracks = [fill_gaps(t, params.tau) for t in tracks]
+    if robust and params.one_track:
+        tracks = merge_duplicates(tracks, params.tau)
     if robust and (params.size_jump or params.groups):
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=params.groups, patience=params.tau)

@@ -3,11 +3,12 @@ track boxes where objects meet."""
 
 from trap_core.robust.borders import continue_to_border
 from trap_core.robust.camera import camera_transforms, cluster_world_speed, world_speed
+from trap_core.robust.duplicates import merge_duplicates
 from trap_core.robust.extent import grow_boxes
 from trap_core.robust.gaps import fill_gaps
 from trap_core.robust.groups import separate_groups
 from trap_core.robust.mixed import pattern_sizes, split_mixed
 from trap_core.robust.rejoin import border_contacts, border_share, rejoin_fragments
 
-__all__ = ["border_contacts", "border_share", "camera_transforms", "cluster_world_speed", "continue_to_border", "fill_gaps", "grow_boxes", "pattern_sizes",
+__all__ = ["border_contacts", "border_share", "camera_transforms", "cluster_world_speed", "continue_to_border", "fill_gaps", "grow_boxes", "merge_duplicates", "pattern_sizes",
            "rejoin_fragments", "separate_groups", "split_mixed", "world_speed"]

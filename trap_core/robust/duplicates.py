@@ -1,0 +1,54 @@
+"""One track per object: tracks that hold the same object at the same time are merged (ours).
+
+The lifetime cut can leave one object's patterns in two clusters that overlap in time (with
+noisy regions each holds a different subset of its structures, and each may have been
+rejoined to another fragment of the object). Both are then selected and the object gets two
+tracks with the same box, one of them a false positive in every frame they share. Two tracks
+are taken for one object when, over at least ``min_common`` frames both cover, their boxes
+match (IoU at least ``min_iou``) in at least ``min_share`` of those frames. Over *all* the
+frames they share, not only some: look-alikes that travel overlapped for a while and then part,
+or a part of an object next to the whole, keep their own tracks.
+"""
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+
+import numpy as np
+
+from trap_core.clustering import Track, box_iou
+
+
+def merge_duplicates(tracks: Sequence[Track], min_common: int, min_iou: float = 0.5,
+                     min_share: float = 0.8) -> list[Track]:
+    """Tracks with duplicates merged: each group keeps its longest track's boxes and id order,
+    and takes the others' frames where it has none. Ids are renumbered 1.. in order."""
+    merged: list[Track] = []
+    for candidate in sorted(tracks, key=len, reverse=True):
+        for k, kept in enumerate(merged):
+            if _same_object(kept, candidate, min_common, min_iou, min_share):
+                merged[k] = _union(kept, candidate)
+                break
+        else:
+            merged.append(candidate)
+    merged.sort(key=lambda t: t.track_id)
+    return [dataclasses.replace(t, track_id=i) for i, t in enumerate(merged, start=1)]
+
+
+def _same_object(a: Track, b: Track, min_common: int, min_iou: float, min_share: float) -> bool:
+    common, in_a, in_b = np.intersect1d(a.frames, b.frames, assume_unique=True, return_indices=True)
+    if common.size < min_common:
+        return False
+    return float(np.mean(box_iou(a.boxes[in_a], b.boxes[in_b]) >= min_iou)) >= min_share
+
+
+def _union(kept: Track, other: Track) -> Track:
+    """``kept`` with ``other``'s frames that it does not cover."""
+    extra = ~np.isin(other.frames, kept.frames)
+    frames = np.concatenate([kept.frames, other.frames[extra]])
+    order = np.argsort(frames, kind="stable")
+    points = None
+    if kept.points is not None and other.points is not None:
+        points = np.vstack([kept.points, other.points[extra]])[order]
+    return dataclasses.replace(kept, frames=frames[order], boxes=np.vstack([kept.boxes, other.boxes[extra]])[order],
+                               score=np.concatenate([kept.score, other.score[extra]])[order], points=points)

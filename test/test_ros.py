@@ -82,7 +82,7 @@ def test_nodes_in_one_process_lose_no_frame_and_keep_headers(ros_bag: Path) -> N
         executor.shutdown(timeout_sec=5)
         with open_image_stream(ros_bag) as stream:
             stamps = [frame.stamp_ns for frame in stream]
-        assert reader.published == len(mining.graphs) == len(received) == 60
+        assert reader.published == mining.received == len(received) == 60
         got = [m.header.stamp.sec * 1_000_000_000 + m.header.stamp.nanosec for m in received]
         assert got == stamps
         assert {m.header.frame_id for m in received} == {"camera"}
@@ -158,15 +158,19 @@ def _process_bag(executable: Path, bag: Path, out: Path, *extra: str) -> subproc
                           text=True, timeout=300)
 
 
-@pytest.mark.parametrize("mining_window", [1500, 51])  # the bag in one window; in two, stitched in the node
+@pytest.mark.parametrize("overrides,chunks", [  # the bag in one window; in two, stitched; in two chunks
+    ({"mining_window": 1500}, 1), ({"mining_window": 51}, 1), ({"tau": 5, "chunk": 20}, 2)])
 def test_process_bag_writes_every_output_and_matches_the_core_pipeline(ros_bag: Path, venv_bin: Path,
-                                                                        tmp_path: Path, mining_window: int) -> None:
+                                                                        tmp_path: Path, overrides: dict,
+                                                                        chunks: int) -> None:
+    assignments = [arg for name, value in overrides.items() for arg in ("-p", f"{name}:={value}")]
     done = _process_bag(venv_bin / "process_bag", ros_bag, tmp_path / "ros", "--ros-args", "--params-file",
-                        str(TOP / "config" / "synthetic.yaml"), "-p", f"mining_window:={mining_window}")
+                        str(TOP / "config" / "synthetic.yaml"), *assignments)
     assert done.returncode == 0, done.stderr[-2000:]
     out = tmp_path / "ros"
     summary = json.loads((out / "summary.json").read_text())
     assert summary["frames"] == 60 and not summary["interrupted"] and summary["counts"]["tracks"] >= 1
+    assert summary["counts"]["chunks"] == chunks
     assert summary["parameters"]["segmentation"] == "colour"  # the segmentation node's, not a default
     assert (out / "tracks.png").stat().st_size > 1000
     from rosbags.highlevel import AnyReader
@@ -177,7 +181,7 @@ def test_process_bag_writes_every_output_and_matches_the_core_pipeline(ros_bag: 
         _, _, raw = next(reader.messages(connections=[connection]))
         message = reader.deserialize(raw, connection.msgtype)
         assert message.header.frame_id == "camera"
-    core = run_bag(ros_bag, tmp_path / "core", TrapParams(segmentation="colour", mining_window=mining_window))
+    core = run_bag(ros_bag, tmp_path / "core", TrapParams(segmentation="colour", **overrides))
     assert core.frames == 60
     np.testing.assert_allclose(read_mot(out / "tracks.txt"), read_mot(tmp_path / "core" / "tracks.txt"))
 

@@ -59,13 +59,17 @@ def _detection(header: Header, track_id: int, box: np.ndarray, score: float) -> 
     return Detection2D(header=header, results=[hypothesis], bbox=bbox, id=str(track_id))
 
 
-def frame_detections(headers: list[Header], tracks: list[Track]) -> list[Detection2DArray]:
-    """One Detection2DArray per frame (empty where no track is seen), header = the frame's image header."""
-    per_frame: list[list[Detection2D]] = [[] for _ in headers]
+def frame_detections(headers: list[Header], tracks: list[Track], first: int = 0, stop: int | None = None,
+                     ) -> list[Detection2DArray]:
+    """One Detection2DArray per frame of ``first..stop-1`` (default: every frame of ``headers``),
+    empty where no track is seen; header = the frame's image header."""
+    stop = len(headers) if stop is None else stop
+    per_frame: list[list[Detection2D]] = [[] for _ in range(first, stop)]
     for trk in tracks:
-        for frame, box, score in zip(trk.frames, trk.boxes, trk.score):
-            per_frame[frame].append(_detection(headers[frame], trk.track_id, box, score))
-    return [Detection2DArray(header=header, detections=found) for header, found in zip(headers, per_frame)]
+        for frame, box, score in zip(trk.frames.tolist(), trk.boxes, trk.score):
+            if first <= frame < stop:
+                per_frame[frame - first].append(_detection(headers[frame], trk.track_id, box, score))
+    return [Detection2DArray(header=headers[first + i], detections=found) for i, found in enumerate(per_frame)]
 
 
 def track_arrays(headers: list[Header], tracks: list[Track]) -> list[Detection2DArray]:

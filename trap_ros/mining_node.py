@@ -1,6 +1,7 @@
-"""Mining node: accumulates plane graphs and mines them window by window as they come; at the end
-of the bag stitches the windows, clusters, selects and publishes ``detections`` (one
-``vision_msgs/Detection2DArray`` per frame, header = that frame's image header), ``tracks`` (one
+"""Mining node: accumulates plane graphs, mines them window by window and tracks them chunk by
+chunk as they come (:mod:`trap_core.pipeline.chunks`); publishes ``detections`` (one
+``vision_msgs/Detection2DArray`` per frame, header = that frame's image header) as soon as a
+chunk makes them final, and at the end of the bag the rest of them, ``tracks`` (one
 Detection2DArray per track, latched) and ``trajectories`` (``visualization_msgs/MarkerArray``).
 Acknowledges every graph on ``progress`` (the bag reader's flow control).
 """
@@ -16,8 +17,7 @@ from std_msgs.msg import Header, UInt64
 from vision_msgs.msg import Detection2DArray
 from visualization_msgs.msg import MarkerArray
 
-from trap_core.pipeline import GRAPH_STAGE, PatternMiner, TrackingResult, TrapParams, frame_rate, track
-from trap_core.rag import PlaneGraph
+from trap_core.pipeline import GRAPH_STAGE, ChunkedRun, ChunkedTracker, TrapParams
 from trap_ros.messages import frame_detections, message_graph, track_arrays, trajectory_markers
 from trap_ros.node_main import run_node
 from trap_ros.parameters import declare_trap_parameters, trap_parameters
@@ -29,20 +29,21 @@ MINING_STAGE = tuple(name for name in TrapParams().as_dict() if name not in GRAP
 class MiningNode(Node):
     """See the module docstring. ``on_done(result, published)`` is called after publishing."""
 
-    def __init__(self, on_done: Callable[[TrackingResult | None, dict], None] | None = None, **kwargs) -> None:
+    def __init__(self, on_done: Callable[[ChunkedRun | None, dict], None] | None = None, **kwargs) -> None:
         kwargs.setdefault("namespace", "trap")
         super().__init__("mining", **kwargs)
         declare_trap_parameters(self, MINING_STAGE)
         self.params = trap_parameters(self, MINING_STAGE)
-        self.graphs: list[PlaneGraph] = []
-        self.miner = PatternMiner(self.params)
+        self.tracker = ChunkedTracker(self.params)
+        self.received = 0
+        self.regions = 0  # summed over the frames received
         self.headers: list[Header] = []
         self.expected: int | None = None
         self.on_done = on_done
         self.done = threading.Event()
-        self.result: TrackingResult | None = None
+        self.result: ChunkedRun | None = None
         self.error: str | None = None
-        self.published: dict[str, list] = {}
+        self.published: dict[str, list] = {"detections": [], "tracks": [], "trajectories": []}
         self._started = False
         self._lock = threading.Lock()
         self.progress_pub = self.create_publisher(UInt64, "progress", PIPELINE)
@@ -57,10 +58,15 @@ class MiningNode(Node):
         with self._lock:  # windows are mined here, while later frames are being segmented
             if self._started:
                 return
-            self.graphs.append(graph)
             self.headers.append(message.header)
-            self.miner.add(graph)
-            count = len(self.graphs)
+            self.received += 1
+            self.regions += graph.n_nodes
+            try:
+                self.tracker.add(graph, message.header.stamp.sec * 1_000_000_000 + message.header.stamp.nanosec)
+                self._publish_final()
+            except Exception as error:  # a chunk failed: reported, the run ends with an error
+                self._fail(error)
+            count = self.received
         self.progress_pub.publish(UInt64(data=count))
         self._maybe_finish()
 
@@ -71,7 +77,7 @@ class MiningNode(Node):
 
     def _maybe_finish(self) -> None:
         with self._lock:
-            ready = self.expected is not None and len(self.graphs) >= self.expected and not self._started
+            ready = self.expected is not None and self.received >= self.expected and not self._started
             self._started = self._started or ready
         if ready:
             threading.Thread(target=self._track_and_publish, name="trap-tracking", daemon=True).start()
@@ -87,32 +93,40 @@ class MiningNode(Node):
         else:
             self._track_and_publish()
 
+    def _publish_final(self) -> None:
+        """Publish the detections of the frames the tracker has made final since the last call."""
+        first = len(self.published["detections"])
+        stop = self.tracker.final_frames
+        if stop > first:
+            messages = frame_detections(self.headers, self.tracker.take_final(), first, stop)
+            for message in messages:
+                self.detections_pub.publish(message)
+            self.published["detections"] += messages
+
+    def _fail(self, error: Exception) -> None:
+        self.error = f"tracking failed: {error}"
+        self.get_logger().error(self.error)
+
     def _track_and_publish(self) -> None:
-        with self._lock:
-            graphs, headers = list(self.graphs), list(self.headers)
-        published: dict[str, list] = {"detections": [], "tracks": [], "trajectories": []}
         try:
-            if len(graphs) >= 2:
-                self.get_logger().info(f"tracking over {len(graphs)} frames")
-                stamps = [h.stamp.sec * 1_000_000_000 + h.stamp.nanosec for h in headers]
-                self.result = track(graphs, self.params, frame_rate(stamps), self.miner)
-                published["detections"] = frame_detections(headers, self.result.tracks)
-                published["tracks"] = track_arrays(headers, self.result.tracks)
-                published["trajectories"] = [trajectory_markers(headers[0], self.result.tracks)]
-                for message in published["detections"]:
-                    self.detections_pub.publish(message)
-                for message in published["tracks"]:
+            with self._lock:  # no graph is added from here on (_started is set)
+                if self.received >= 2:
+                    self.get_logger().info(f"tracking over {self.received} frames")
+                    self.result = self.tracker.finish()
+                    self._publish_final()
+                else:
+                    self.get_logger().warning(f"{self.received} frame(s): too few to track")
+            if self.result is not None:
+                self.published["tracks"] = track_arrays(self.headers, self.result.tracks)
+                self.published["trajectories"] = [trajectory_markers(self.headers[0], self.result.tracks)]
+                for message in self.published["tracks"]:
                     self.tracks_pub.publish(message)
-                self.trajectories_pub.publish(published["trajectories"][0])
+                self.trajectories_pub.publish(self.published["trajectories"][0])
                 self.get_logger().info(f"{len(self.result.tracks)} tracks published")
-            else:
-                self.get_logger().warning(f"{len(graphs)} frame(s): too few to track")
         except Exception as error:  # reported, never swallowed: the run ends with an error
-            self.error = f"tracking failed: {error}"
-            self.get_logger().error(self.error)
-        self.published = published
+            self._fail(error)
         if self.on_done:
-            self.on_done(self.result, published)
+            self.on_done(self.result, self.published)
         self.done.set()
 
 

@@ -116,8 +116,8 @@ def _main() -> int:
         while not mining.done.wait(timeout=0.2) and not interrupt.is_set():
             if reader.error and reader.finished.is_set():
                 break
-            if len(mining.graphs) > meter.done:
-                meter.advance(len(mining.graphs) - meter.done)
+            if mining.received > meter.done:
+                meter.advance(mining.received - meter.done)
         if interrupt.is_set() and not mining.done.is_set():
             # Stop reading; the reader announces what it published, the frames in flight are
             # segmented and mined, and the mining node tracks over all of them as at a normal end
@@ -130,13 +130,14 @@ def _main() -> int:
                 if interrupt.is_set() or time.monotonic() > deadline:
                     mining.finish()
                     break
-        meter.advance(len(mining.graphs) - meter.done)
+        meter.advance(mining.received - meter.done)
         meter.finish()
         executor.shutdown(timeout_sec=5)
         if reader.error and not mining.done.is_set():
             raise UsageError(reader.error)
         seconds = {"total": time.perf_counter() - start, **(mining.result.seconds if mining.result else {})}
-        run = BagRun(reader.stream.topic, len(mining.graphs), mining.graphs, mining.result, seconds, {}, interrupted)
+        run = BagRun(reader.stream.topic, mining.received, mining.regions / max(mining.received, 1), mining.result,
+                     seconds, {}, interrupted)
         # Each node holds the parameters of its own stages; the summary reports the run's.
         graph_stage = {name: getattr(segmentation.params, name) for name in GRAPH_STAGE}
         params = dataclasses.replace(mining.params, **graph_stage)

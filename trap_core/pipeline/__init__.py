@@ -1,11 +1,12 @@
 """The whole TRAP chain on a stream of frames: parameters, graphs on threads, tracking."""
 
 from trap_core.pipeline.bag_run import BagRun, run_bag
+from trap_core.pipeline.chunks import ChunkedRun, ChunkedTracker, ChunkSummary
 from trap_core.pipeline.frames_to_graphs import frame_graph, graphs_of, synthetic_graphs
 from trap_core.pipeline.params import GRAPH_STAGE, METHODS, SEGMENTATIONS, ParameterError, TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.pipeline.tracking import TrackingResult, frame_rate, track
 
-__all__ = ["GRAPH_STAGE", "METHODS", "BagRun", "SEGMENTATIONS", "ParameterError", "PatternMiner", "TrackingResult",
+__all__ = ["GRAPH_STAGE", "METHODS", "BagRun", "ChunkSummary", "ChunkedRun", "ChunkedTracker", "SEGMENTATIONS", "ParameterError", "PatternMiner", "TrackingResult",
            "TrapParams", "frame_graph", "frame_rate", "graphs_of", "run_bag", "synthetic_graphs",
            "track"]

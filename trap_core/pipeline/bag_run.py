@@ -11,12 +11,10 @@ import numpy as np
 
 from trap_core.bagio import open_image_stream
 from trap_core.outputs import Thumbnails, contact_sheet, write_tracks_mot
+from trap_core.pipeline.chunks import ChunkedRun, ChunkedTracker
 from trap_core.pipeline.frames_to_graphs import graphs_of
 from trap_core.pipeline.params import TrapParams
-from trap_core.pipeline.pattern_miner import PatternMiner
-from trap_core.pipeline.tracking import TrackingResult, frame_rate, track
 from trap_core.progress import Progress
-from trap_core.rag import PlaneGraph
 
 @dataclass
 class BagRun:
@@ -24,8 +22,8 @@ class BagRun:
 
     topic: str
     frames: int
-    graphs: list[PlaneGraph]
-    result: TrackingResult | None
+    regions_per_frame: float
+    tracking: ChunkedRun | None
     seconds: dict[str, float]
     outputs: dict[str, str]
     interrupted: bool = False
@@ -48,28 +46,28 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    seconds: dict[str, float] = {}
-    graphs: list[PlaneGraph] = []
     stamps: list[int] = []
+    regions = 0
     interrupted = False
     with open_image_stream(bag, topic) as stream:
         meter = Progress(stream.count, f"segmenting {stream.topic}")
         thumbnails = Thumbnails(stream.count)
-        miner = PatternMiner(params, stream.count)
+        tracker = ChunkedTracker(params, stream.count)
         start = time.perf_counter()
         try:
             for graph in graphs_of(stamped_frames(stream, thumbnails, meter, stamps), params):
-                graphs.append(graph)
-                miner.add(graph)
+                tracker.add(graph, stamps[tracker.frames])
+                regions += graph.n_nodes
         except KeyboardInterrupt:
             interrupted = True
         meter.finish()
-        seconds["read_segment_graph"] = time.perf_counter() - start - miner.seconds  # windows mined meanwhile: "mining"
+        elapsed = time.perf_counter() - start
         chosen_topic = stream.topic
-    result = track(graphs, params, frame_rate(stamps[:len(graphs)]), miner) if len(graphs) >= 2 else None
-    if result is not None:
-        seconds.update(result.seconds)
-    run = BagRun(chosen_topic, len(graphs), graphs, result, seconds, {}, interrupted)
+    frames = tracker.frames
+    tracking = tracker.finish() if frames >= 2 else None
+    seconds = tracking.seconds if tracking else {}
+    seconds["read_segment_graph"] = elapsed - tracking.seconds_while_reading() if tracking else elapsed
+    run = BagRun(chosen_topic, frames, regions / max(frames, 1), tracking, seconds, {}, interrupted)
     write_outputs(run, bag, out, params, thumbnails.images, thumbnails.scale)
     if interrupted:
         raise KeyboardInterrupt
@@ -79,21 +77,22 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
 def write_outputs(run: BagRun, bag: str | Path, out: Path, params: TrapParams,
                   thumbnails: dict[int, np.ndarray], scale: float) -> None:
     """tracks.txt (MOTChallenge), tracks.png (contact sheet) and summary.json."""
-    tracks = run.result.tracks if run.result else []
+    tracks = run.tracking.tracks if run.tracking else []
+    chunks = run.tracking.chunks if run.tracking else []
     run.outputs["tracks.txt"] = str(out / "tracks.txt")
     rows = write_tracks_mot(out / "tracks.txt", tracks)
     shown = {f: t for f, t in thumbnails.items() if f < run.frames}
     if shown:
         run.outputs["tracks.png"] = str(contact_sheet(shown, tracks, scale, out / "tracks.png"))
-    mined = run.result.mining if run.result else None
     summary = {
         "bag": str(bag), "topic": run.topic, "frames": run.frames, "interrupted": run.interrupted,
         "parameters": params.as_dict(),
         "counts": {
-            "regions_per_frame": float(np.mean([g.n_nodes for g in run.graphs])) if run.graphs else 0.0,
-            "plane_patterns": mined.n_patterns if mined else 0,
-            "spatio_temporal_patterns": mined.n_st if mined else 0,
-            "clusters_at_cut": run.result.hierarchy.cut_level if run.result else 0,
+            "regions_per_frame": run.regions_per_frame,
+            "chunks": len(chunks),
+            "plane_patterns": sum(c.plane_patterns for c in chunks),  # per chunk, summed
+            "spatio_temporal_patterns": sum(c.spatio_temporal_patterns for c in chunks),
+            "clusters_at_cut": sum(c.clusters_at_cut for c in chunks),
             "tracks": len(tracks), "track_rows": rows,
         },
         "tracks": [{"id": t.track_id, "frames": len(t), "first_frame": int(t.frames[0]) + 1,

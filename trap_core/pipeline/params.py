@@ -51,6 +51,10 @@ class TrapParams:
     mining_window: int = _p(1500, "frames mined at once: longer videos are mined in windows overlapping by tau "
                                   "frames and stitched, memory bounded (ours); shares in freq_st_min/freq_min are "
                                   "of the window; 0 = the whole video at once (paper)")
+    chunk: int = _p(9000, "frames: a longer bag is tracked in chunks starting every this many frames, sharing 4 tau "
+                          "frames with the next (tracks continue across with their ids); memory is bounded by a "
+                          "chunk and results are final while the bag plays; shares of the video are of a chunk "
+                          "(ours); 0 = the whole bag at once")
     method: str = _p("robust", "paper (TRAP as published) or robust (ours: README 'Method')")
     one_path: bool = _p(True, "robust: link each pattern's occurrences one to one (one object, one path)")
     link_reach: float = _p(0.8, "robust: a pattern's path takes no step longer than this times the larger side of its "
@@ -108,6 +112,7 @@ class TrapParams:
             (1 <= self.max_faces <= 8, "max_faces must be within 1..8"),
             (self.mining_window == 0 or self.mining_window > 2 * self.tau,
              "mining_window must be 0 (whole video) or more than 2 x tau"),
+            (self.chunk == 0 or self.chunk >= 4 * self.tau, "chunk must be 0 (whole bag) or at least 4 x tau frames"),
             (0 <= self.ignore_top < 1 and 0 <= self.length_tolerance <= 1,
              "ignore_top must be within [0, 1) and length_tolerance within [0, 1]"),
             (self.n_objects >= 0 and 0 <= self.min_track_length <= 1, "n_objects >= 0, min_track_length within [0, 1]"),

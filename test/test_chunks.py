@@ -86,3 +86,20 @@ def test_one_chunk_is_the_whole_video_and_chunks_keep_the_objects() -> None:
 def test_chunk_shorter_than_the_overlap_is_refused() -> None:
     with pytest.raises(ParameterError, match="chunk"):
         TrapParams(chunk=50, tau=25)
+
+
+@pytest.mark.parametrize("n_frames", [2, 99, 139, 140, 141, 221, 239, 240, 241])
+def test_every_frame_is_final_once_whatever_the_length(monkeypatch: pytest.MonkeyPatch, n_frames: int) -> None:
+    """One object standing in every frame of every chunk (chunk 100, overlap 40): one id, each frame once."""
+    def fake_track(graphs, params, fps, miner):
+        frames = np.arange(len(graphs))
+        return _Stub([Track(1, frames, np.tile([10.0, 50.0, 40.0, 30.0], (frames.size, 1)), np.ones(frames.size), 1)])
+
+    monkeypatch.setattr(chunks, "track", fake_track)
+    monkeypatch.setattr(chunks, "PatternMiner", lambda params, n_frames: type("M", (), {"add": lambda s, g: None})())
+    tracker = ChunkedTracker(TrapParams(chunk=100, tau=10), n_frames)
+    for frame in range(n_frames):
+        tracker.add(object(), frame)
+    run = tracker.finish()
+    assert tracker.final_frames == n_frames and len(run.tracks) == 1
+    np.testing.assert_array_equal(run.tracks[0].frames, np.arange(n_frames))

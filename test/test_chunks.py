@@ -10,13 +10,23 @@ from trap_core.pipeline import ChunkedTracker, ParameterError, TrapParams, synth
 from trap_core.synthetic import SceneConfig
 
 
-class _Stub:
-    """Stands in for a chunk's tracking result: tracks given per chunk (local frames)."""
+_FRAME = type("Graph", (), {"bbox": np.array([[0, 0, 639, 479]])})()  # a 640x480 frame's graph, to the tracker
 
-    def __init__(self, tracks: list[Track]) -> None:
+
+class _Stub:
+    """Stands in for a chunk's tracking result: tracks given per chunk (local frames); each
+    track's cluster is made of ``structures[cluster]`` (plane pattern hashes, 10 occurrences each)."""
+
+    def __init__(self, tracks: list[Track], structures: dict[int, list[int]] | None = None) -> None:
         self.tracks = tracks
         self.seconds = {"mining": 0.0}
-        self.mining = type("Mined", (), {"n_patterns": 1, "n_st": 1})()
+        structures = structures or {t.cluster: [t.cluster] for t in tracks}
+        pairs = [(cluster, key) for cluster, keys in structures.items() for key in keys]
+        hashes = np.array(sorted({key for _, key in pairs}), dtype=np.int64)
+        self.labels = np.array([cluster for cluster, _ in pairs])
+        self.mining = type("Mined", (), {"n_patterns": hashes.size, "n_st": len(pairs), "pattern_hash": hashes,
+                                         "st_pattern": np.searchsorted(hashes, [key for _, key in pairs]),
+                                         "st_offsets": np.arange(len(pairs) + 1) * 10})()
         self.hierarchy = type("Cut", (), {"cut_level": 1})()
 
 
@@ -46,7 +56,7 @@ def test_ids_continue_across_chunks_and_boxes_are_final_while_reading(monkeypatc
     tracker = ChunkedTracker(TrapParams(chunk=100, tau=10))
     final = []
     for frame in range(260):
-        tracker.add(object(), frame)
+        tracker.add(_FRAME, frame)
         final.append(tracker.final_frames)
     assert final[138] == 0 and final[139] == 120 and final[239] == 220  # middle of each overlap
     first_pieces = tracker.take_final()
@@ -99,7 +109,45 @@ def test_every_frame_is_final_once_whatever_the_length(monkeypatch: pytest.Monke
     monkeypatch.setattr(chunks, "PatternMiner", lambda params, n_frames: type("M", (), {"add": lambda s, g: None})())
     tracker = ChunkedTracker(TrapParams(chunk=100, tau=10), n_frames)
     for frame in range(n_frames):
-        tracker.add(object(), frame)
+        tracker.add(_FRAME, frame)
     run = tracker.finish()
     assert tracker.final_frames == n_frames and len(run.tracks) == 1
     np.testing.assert_array_equal(run.tracks[0].frames, np.arange(n_frames))
+
+
+def _boxes(track_id: int, cluster: int, frames: np.ndarray, x: np.ndarray, y: float) -> Track:
+    return Track(track_id, frames, np.column_stack([x, np.full(frames.size, y), np.full(frames.size, 40.0),
+                                                    np.full(frames.size, 30.0)]), np.ones(frames.size), cluster)
+
+
+def test_an_object_away_across_a_chunk_border_comes_back_with_its_id(monkeypatch: pytest.MonkeyPatch) -> None:
+    """chunk 100, tau 10 (chunks [0, 140) and [100, 240)): A leaves at the right border at frame 90
+    and B, made of A's structures, enters there at 170; D vanishes inside the view, E appears
+    inside it with D's structures; C enters with other structures: a new object."""
+    early, late = np.arange(0, 91), np.arange(170, 240)
+    per_chunk = {
+        0: ([_boxes(1, 1, early, 510.0 + early, 50), _boxes(2, 2, np.arange(61), np.full(61, 300.0), 300)],
+            {1: [11, 12, 13], 2: [15, 16]}),
+        100: ([_boxes(1, 7, late, 600.0 - (late - 170), 50), _boxes(2, 8, np.arange(180, 240), np.full(60, 600.0), 400),
+               _boxes(3, 9, np.arange(200, 240), np.full(40, 300.0), 300)],
+              {7: [11, 12, 13, 14], 8: [19], 9: [15, 16]}),
+    }
+    seen: list[int] = []
+
+    def fake_track(graphs, params, fps, miner):
+        first = 0 if not seen else 100
+        seen.append(first)
+        tracks, structures = per_chunk[first]
+        return _Stub([Track(t.track_id, t.frames - first, t.boxes, t.score, t.cluster) for t in tracks], structures)
+
+    monkeypatch.setattr(chunks, "track", fake_track)
+    monkeypatch.setattr(chunks, "PatternMiner", lambda params, n_frames: type("M", (), {"add": lambda s, g: None})())
+    tracker = ChunkedTracker(TrapParams(chunk=100, tau=10))
+    for frame in range(240):
+        tracker.add(_FRAME, frame)
+    run = tracker.finish()
+    frames = {t.track_id: t.frames.tolist() for t in run.tracks}
+    assert sorted(frames) == [1, 2, 3]
+    assert frames[1] == list(range(0, 91)) + list(range(170, 240))   # A, then B
+    assert frames[2] == list(range(0, 61)) + list(range(200, 240))   # D, then E
+    assert frames[3] == list(range(180, 240))                         # C: new

@@ -98,7 +98,11 @@ class MiningNode(Node):
         first = len(self.published["detections"])
         stop = self.tracker.final_frames
         if stop > first:
-            messages = frame_detections(self.headers, self.tracker.take_final(), first, stop)
+            pieces = self.tracker.take_final()
+            if stop < self.received:  # a chunk was tracked while the bag plays
+                self.get_logger().info(f"chunk {len(self.tracker.run.chunks)} tracked: detections of frames "
+                                       f"{first + 1}-{stop} final ({len({p.track_id for p in pieces})} tracks there)")
+            messages = frame_detections(self.headers, pieces, first, stop)
             for message in messages:
                 self.detections_pub.publish(message)
             self.published["detections"] += messages

@@ -7,8 +7,14 @@ memory), and its selection is relative to the video (a track covers a share of i
 frames, one starting every ``chunk`` frames, so consecutive chunks share ``overlap`` frames
 (``4 tau``). A track of a chunk continues the previous chunk's track whose boxes match its own
 (IoU at least 0.5) in the most shared frames, at least ``tau`` of them, one to one, and keeps
-its id. Each chunk gives the boxes of its frames up to the middle of the overlap with the next
-one; those are final as soon as the next chunk is tracked, while later frames are still read.
+its id. An object out of view across a chunk border has no shared frames: as fragments are
+rejoined within a chunk (:func:`trap_core.robust.rejoin_fragments`), a new track that enters
+the view (or appears inside it) takes the id of a previous chunk's track that ended before it
+started, left the view the same way (or vanished inside it), and is made of the same
+structures: for one of the two, the share of its occurrences whose plane patterns the other
+also has is at least ``rejoin_similarity``; most similar first, one to one. Each chunk gives the
+boxes of its frames up to the middle of the overlap with the next one; those are final as soon
+as the next chunk is tracked, while later frames are still read.
 """
 from __future__ import annotations
 
@@ -20,8 +26,9 @@ import numpy as np
 from trap_core.clustering import Track, box_iou
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
-from trap_core.pipeline.tracking import frame_rate, track
+from trap_core.pipeline.tracking import TrackingResult, frame_rate, track
 from trap_core.rag import PlaneGraph
+from trap_core.robust import reaches_border
 
 MIN_IOU = 0.5  # boxes that hold the same object
 
@@ -86,6 +93,7 @@ class ChunkedTracker:
         self._miner = PatternMiner(params, self._span(0))
         self._next_miner: PatternMiner | None = None  # fed the overlap, for the next chunk
         self._pending: list[Track] | None = None      # the last chunk's tracks, global ids, not all final yet
+        self._structures: dict[int, dict[int, float]] = {}  # last chunk's tracks: plane pattern -> occurrences
         self._pieces: dict[int, list[Track]] = {}
         self._fresh: list[Track] = []
         self.final_frames = 0                        # boxes of every frame before this one are final
@@ -140,8 +148,13 @@ class ChunkedTracker:
         next chunk (to the end of the stream if ``final``)."""
         result = track(self._graphs, self.params, frame_rate(self._stamps), self._miner)
         tracks = [dataclasses.replace(t, frames=t.frames + self._start) for t in result.tracks]
-        continued = self._continued(self._pending, tracks) if self._pending is not None else {}
+        structures = [_structures(result, t.cluster) for t in result.tracks]
+        continued = {}
+        if self._pending is not None:
+            continued = self._continued(self._pending, tracks)
+            continued.update(self._returned(self._pending, tracks, structures, continued))
         self._pending = self._numbered(tracks, continued)
+        self._structures = {t.track_id: s for t, s in zip(self._pending, structures)}
         self._emit(self.frames if final else self._start + self.params.chunk + self.overlap // 2)
         self.run.chunks.append(ChunkSummary(self._start, len(self._graphs), result.mining.n_patterns,
                                             result.mining.n_st, result.hierarchy.cut_level, len(tracks),
@@ -166,6 +179,30 @@ class ChunkedTracker:
                 taken_old.add(old_id)
         return taken_new
 
+    def _returned(self, previous: list[Track], current: list[Track], structures: list[dict[int, float]],
+                  continued: dict[int, int]) -> dict[int, int]:
+        """{index in ``current``: id of the previous chunk's track whose object it is, come back}."""
+        width, height = (float(self._graphs[0].bbox[:, axis].max() + 1) for axis in (2, 3))
+        taken = set(continued.values())
+        ended = [t for t in previous if t.track_id not in taken]
+        matches = []
+        for i, new in enumerate(current):
+            if i in continued:
+                continue
+            enters = bool(reaches_border(new.boxes[:1], width, height)[0])
+            for old in ended:
+                leaves = bool(reaches_border(old.boxes[-1:], width, height)[0])
+                if old.frames[-1] < new.frames[0] and leaves == enters:
+                    similarity = _similarity(self._structures[old.track_id], structures[i])
+                    if similarity >= self.params.rejoin_similarity:
+                        matches.append((similarity, i, old.track_id))
+        found: dict[int, int] = {}
+        for _, i, old_id in sorted(matches, key=lambda m: -m[0]):
+            if i not in found and old_id not in taken:
+                found[i] = old_id
+                taken.add(old_id)
+        return found
+
     def _numbered(self, tracks: list[Track], continued: dict[int, int]) -> list[Track]:
         out = []
         for i, t in enumerate(tracks):
@@ -185,6 +222,27 @@ class ChunkedTracker:
                 self._pieces.setdefault(t.track_id, []).append(piece)
                 self._fresh.append(piece)
         self.final_frames = stop
+
+
+def _structures(result: TrackingResult, cluster: int) -> dict[int, float]:
+    """Occurrences of each plane pattern (by its hash: the same in every chunk) in a track's cluster."""
+    mined = result.mining
+    patterns = np.flatnonzero(result.labels == cluster)
+    hashes = mined.pattern_hash[mined.st_pattern[patterns]]
+    counts = np.diff(mined.st_offsets)[patterns].astype(float)
+    out: dict[int, float] = {}
+    for key, count in zip(hashes.tolist(), counts.tolist()):
+        out[key] = out.get(key, 0.0) + count
+    return out
+
+
+def _similarity(a: dict[int, float], b: dict[int, float]) -> float:
+    """For one of the two, the share of its occurrences whose plane patterns the other also has,
+    the larger (a short fragment may show only some of an object's structures)."""
+    def share(x: dict[int, float], y: dict[int, float]) -> float:
+        total = sum(x.values())
+        return sum(v for k, v in x.items() if k in y) / total if total else 0.0
+    return max(share(a, b), share(b, a))
 
 
 def _joined(track_id: int, pieces: list[Track]) -> Track:

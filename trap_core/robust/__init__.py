@@ -8,7 +8,7 @@ from trap_core.robust.extent import grow_boxes
 from trap_core.robust.gaps import fill_gaps
 from trap_core.robust.groups import separate_groups
 from trap_core.robust.mixed import pattern_sizes, split_mixed
-from trap_core.robust.rejoin import border_contacts, border_share, rejoin_fragments
+from trap_core.robust.rejoin import border_contacts, border_share, reaches_border, rejoin_fragments
 
 __all__ = ["border_contacts", "border_share", "camera_transforms", "cluster_world_speed", "continue_to_border", "fill_gaps", "grow_boxes", "merge_duplicates", "pattern_sizes",
-           "rejoin_fragments", "separate_groups", "split_mixed", "world_speed"]
+           "reaches_border", "rejoin_fragments", "separate_groups", "split_mixed", "world_speed"]

@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """Benchmark: tracking quality of the defaults on synthetic videos with ground truth.
 
-Four sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
+Five sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
 presets, seeds 0-2), the variants looked at while the robust rules were chosen ("tuned"),
-variants never looked at while choosing them ("held-out"), and frames larger than the working
-size ("larger", segmented scaled down to ``max_side``). Prints, per video, the tracks found
+variants never looked at while choosing them ("held-out"), frames larger than the working
+size ("larger", segmented scaled down to ``max_side``), and a camera that also turns and zooms
+("camera"). Prints, per video, the tracks found
 without being told the number of objects, each object's box precision/recall (%) and MOTA /
 IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90 or better and
 the mean MOTA / IDF1. Graphs are cached (``--cache``), so a second run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,held-out,larger] [-p name:=value]``
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,held-out,larger,camera] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
@@ -56,7 +57,15 @@ LARGER = [  # made after every rule above was chosen: frames larger than the wor
     ("identical, 800x600, noise 2, Felzenszwalb", dict(seed=46, identical=True, width=800, height=600, noise=2.0),
      "felzenszwalb"),
 ]
-SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER}
+CAMERA = [  # made after every rule above was chosen: the camera also turns (yaw) and zooms
+    ("identical, turn 10 deg, zoom 15 %", dict(seed=0, identical=True, rotation=10.0, zoom=0.15), "colour"),
+    ("distinct, turn 10 deg, zoom 15 %", dict(seed=1, rotation=10.0, zoom=0.15), "colour"),
+    ("identical, turn 20 deg", dict(seed=2, identical=True, rotation=20.0), "colour"),
+    ("distinct, zoom 30 %", dict(seed=3, zoom=0.3), "colour"),
+    ("distinct, turn 10 deg, zoom 15 %, noise 2, Felzenszwalb", dict(seed=4, rotation=10.0, zoom=0.15, noise=2.0),
+     "felzenszwalb"),
+]
+SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA}
 
 
 def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None = None,
@@ -87,7 +96,7 @@ def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--sets", default="analogues,tuned,held-out,larger", help="comma-separated: " + ", ".join(SETS))
+    parser.add_argument("--sets", default="analogues,tuned,held-out,larger,camera", help="comma-separated: " + ", ".join(SETS))
     parser.add_argument("--cache", type=Path, default=Path.home() / ".cache" / "trap_ros" / "quality")
     parser.add_argument("-p", dest="overrides", action="append", default=[], type=parameter_assignment,
                         metavar="NAME:=VALUE", help="parameter for every run (as process_bag's -p)")

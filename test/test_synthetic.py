@@ -105,3 +105,25 @@ def test_bad_configs_are_refused() -> None:
         SceneConfig(width=10, height=10)
     with pytest.raises(ValueError):
         SceneConfig(frames=0)
+    with pytest.raises(ValueError, match="rotation"):
+        SceneConfig(rotation=90.0)
+
+
+def test_a_turning_zooming_camera_moves_the_background_only() -> None:
+    """Objects are drawn in image space: same boxes; the background is another view of the same
+    world, in its exact colours (nearest pixels)."""
+    still = list(render(SceneConfig(width=160, height=120, frames=40, seed=4)))
+    turned = list(render(SceneConfig(width=160, height=120, frames=40, seed=4, rotation=15.0, zoom=0.2)))
+    assert [f.boxes for f in still] == [f.boxes for f in turned]
+    assert np.abs(still[20].rgb.astype(int) - turned[20].rgb).mean() > 5
+    world_colours = {tuple(c) for f in still for c in f.rgb.reshape(-1, 3)}
+    assert {tuple(c) for c in turned[20].rgb.reshape(-1, 3)} <= world_colours | _object_colours(turned[20])
+
+
+def _object_colours(frame) -> set[tuple]:
+    colours = set()
+    for box in frame.boxes:
+        if box is not None:
+            x, y, w, h = box
+            colours |= {tuple(c) for c in frame.rgb[y:y + h, x:x + w].reshape(-1, 3)}
+    return colours

@@ -22,7 +22,7 @@ def build_parser() -> argparse.ArgumentParser:
     defaults = SceneConfig()
     for name in ("frames", "width", "height", "objects", "regions", "seed"):
         parser.add_argument(f"--{name}", type=int, default=getattr(defaults, name))
-    for name in ("fps", "noise", "illumination", "object_scale"):
+    for name in ("fps", "noise", "illumination", "object_scale", "rotation", "zoom"):
         parser.add_argument(f"--{name.replace('_', '-')}", dest=name, type=float, default=getattr(defaults, name))
     parser.add_argument("--no-exits", action="store_true", help="no object leaves the field of view")
     parser.add_argument("--encoding", choices=SUPPORTED_ENCODINGS, default="rgb8")

@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+import cv2
 import numpy as np
 from scipy.spatial import Delaunay, cKDTree
 
@@ -43,6 +44,9 @@ class SceneConfig:
     illumination: float = 0.0
     exits: bool = True
     object_scale: float = 1.0
+    rotation: float = 0.0  # degrees: the camera also turns (yaw), up to this either way
+    zoom: float = 0.0      # the camera also zooms, up to this share in and out
+
 
     def __post_init__(self) -> None:
         if self.width < 64 or self.height < 48:
@@ -51,6 +55,8 @@ class SceneConfig:
             raise ValueError("frames >= 1, objects >= 0 and regions >= 8 are required")
         if self.noise < 0 or not 0 <= self.illumination < 1:
             raise ValueError("noise >= 0 and 0 <= illumination < 1 are required")
+        if not 0 <= self.rotation <= 45 or not 0 <= self.zoom < 0.5:
+            raise ValueError("0 <= rotation <= 45 degrees and 0 <= zoom < 0.5 are required")
 
 
 PRESETS = {
@@ -219,7 +225,10 @@ def render(cfg: SceneConfig) -> Iterator[RenderedFrame]:
     W, H = cfg.width, cfg.height
     for t in range(cfg.frames):
         cx, cy = world.camera[t]
-        frame = world.rgb[cy:cy + H, cx:cx + W].copy()
+        if cfg.rotation or cfg.zoom:
+            frame = _turned_view(world.rgb, cx, cy, W, H, cfg, t)
+        else:
+            frame = world.rgb[cy:cy + H, cx:cx + W].copy()
         owner = np.full((H, W), -1, dtype=np.int16)
         for obj in range(cfg.objects):
             for slot, rects in _part_rects(*world.paths[obj, t], world.object_size):
@@ -236,6 +245,22 @@ def render(cfg: SceneConfig) -> Iterator[RenderedFrame]:
                 shaded += noise_rng.normal(0, cfg.noise, size=frame.shape).astype(np.float32)
             frame = np.clip(np.rint(shaded), 0, 255).astype(np.uint8)
         yield RenderedFrame(t, frame, boxes)
+
+
+def _turned_view(world: np.ndarray, cx: int, cy: int, width: int, height: int, cfg: SceneConfig,
+                 t: int) -> np.ndarray:
+    """The view at ``(cx, cy)`` with the camera also turned and zoomed about the view's centre
+    (slow sinusoids over the video; nearest pixels, so colours stay exact). Objects are drawn in
+    image space afterwards: only the background turns, as for a drone that yaws and climbs."""
+    phase = 2 * np.pi * t / max(cfg.frames, 2)
+    angle = np.radians(cfg.rotation * np.sin(phase * 1.5))
+    scale = 1.0 + cfg.zoom * np.sin(phase * 2.5 + 1.0)
+    c, s = np.cos(angle) / scale, np.sin(angle) / scale
+    centre_x, centre_y = cx + width / 2, cy + height / 2
+    to_world = np.array([[c, -s, centre_x - c * width / 2 + s * height / 2],
+                         [s, c, centre_y - s * width / 2 - c * height / 2]])
+    return cv2.warpAffine(world, to_world, (width, height), flags=cv2.INTER_NEAREST | cv2.WARP_INVERSE_MAP,
+                          borderMode=cv2.BORDER_REFLECT)
 
 
 def _visible_box(owner: np.ndarray, obj: int) -> tuple[int, int, int, int] | None:

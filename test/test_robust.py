@@ -439,12 +439,26 @@ def test_two_tracks_on_one_object_become_one() -> None:
     np.testing.assert_array_equal(out[1].boxes[120:], short_one.boxes[60:])
 
 
-def test_lookalikes_overlapped_for_a_while_and_a_part_keep_their_tracks() -> None:
+def test_lookalikes_overlapped_for_a_while_keep_their_tracks() -> None:
     from trap_core.robust import merge_duplicates
     a, b = _lookalike_pair(100)
     b[20:40] = a[20:40]                       # together for 20 of their 100 shared frames
     frames = np.arange(100)
-    part = a * [1.0, 1.0, 0.5, 0.5]           # the object's upper left quarter: IoU 0.25
-    tracks = [_as_track(1, frames, a), _as_track(2, frames, b), _as_track(3, frames, part)]
-    assert len(merge_duplicates(tracks, min_common=25)) == 3
+    tracks = [_as_track(1, frames, a), _as_track(2, frames, b)]
+    assert len(merge_duplicates(tracks, min_common=25)) == 2
     assert len(merge_duplicates([tracks[0], _as_track(2, frames[:20], a[:20])], min_common=25)) == 2  # too short
+
+
+def test_a_track_on_part_of_an_object_joins_the_objects_track() -> None:
+    """A part track (the upper left quarter: IoU 0.25, all inside) over the frames it shares with
+    the object's track, then on its own: one track. The same part beside the object's box (not
+    inside it) stays apart."""
+    from trap_core.robust import merge_duplicates
+    a, _ = _lookalike_pair(100)
+    frames = np.arange(100)
+    whole = _as_track(1, frames[:60], a[:60])
+    part = _as_track(2, frames[30:], a[30:] * [1.0, 1.0, 0.5, 0.5])
+    merged = merge_duplicates([whole, part], min_common=25)
+    assert len(merged) == 1 and merged[0].frames.tolist() == list(range(100))
+    beside = _as_track(2, frames[30:], a[30:] * [1.0, 1.0, 0.5, 0.5] + [45.0, 0, 0, 0])
+    assert len(merge_duplicates([whole, beside], min_common=25)) == 2

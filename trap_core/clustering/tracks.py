@@ -39,6 +39,17 @@ def box_iou(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.where(union > 0, inter / np.where(union > 0, union, 1), 0.0)
 
 
+def box_containment(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Share of the smaller of boxes ``a``, ``b`` ``(x, y, w, h)`` (last axis) that lies in the
+    other, broadcast over the others (0 where a box is absent: NaN)."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    ix = np.minimum(a[..., 0] + a[..., 2], b[..., 0] + b[..., 2]) - np.maximum(a[..., 0], b[..., 0])
+    iy = np.minimum(a[..., 1] + a[..., 3], b[..., 1] + b[..., 3]) - np.maximum(a[..., 1], b[..., 1])
+    smaller = np.minimum(a[..., 2] * a[..., 3], b[..., 2] * b[..., 3])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.nan_to_num(np.clip(ix, 0, None) * np.clip(iy, 0, None) / smaller, posinf=0.0)
+
+
 def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, track_id: int,
                 graphs: Sequence[PlaneGraph] | None = None, core_share: float = 0.0) -> Track:
     """Box of the cluster in each frame: around the regions of its patterns' occurrences there.

@@ -29,7 +29,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track
+from trap_core.clustering import Track, box_containment
 from trap_core.robust.rejoin import reaches_border
 
 GROUPED = 0.5  # share of the smaller box inside the other: the two boxes hold the same regions
@@ -99,15 +99,6 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
     return out
 
 
-def _overlap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Per frame: the share of the smaller of boxes ``a``, ``b`` (F, 4) that lies in the other (NaN: absent)."""
-    ix = np.minimum(a[:, 0] + a[:, 2], b[:, 0] + b[:, 2]) - np.maximum(a[:, 0], b[:, 0])
-    iy = np.minimum(a[:, 1] + a[:, 3], b[:, 1] + b[:, 3]) - np.maximum(a[:, 1], b[:, 1])
-    smaller = np.minimum(a[:, 2] * a[:, 3], b[:, 2] * b[:, 3])
-    with np.errstate(invalid="ignore"):
-        return np.nan_to_num(np.clip(ix, 0, None) * np.clip(iy, 0, None) / smaller)
-
-
 def _partners(boxes: np.ndarray) -> np.ndarray:
     """(T, F): the track each track's box is grouped with in each frame (most overlap), -1 if none."""
     n_tracks, n_frames = boxes.shape[:2]
@@ -115,7 +106,7 @@ def _partners(boxes: np.ndarray) -> np.ndarray:
     partner = np.full((n_tracks, n_frames), -1)
     for a in range(n_tracks):
         for b in range(a + 1, n_tracks):
-            shared = _overlap(boxes[a], boxes[b])
+            shared = box_containment(boxes[a], boxes[b])
             for me, other in ((a, b), (b, a)):
                 better = (shared > GROUPED) & (shared > best[me])
                 best[me, better] = shared[better]
@@ -202,7 +193,7 @@ def _split(placed: np.ndarray, boxes: np.ndarray, usual: np.ndarray, centres: np
         grouped = np.flatnonzero(partner[slot] == other)
         box = boxes[slot, grouped]
         apart = np.flatnonzero(~np.isnan(boxes[slot, :, 0]) & ~np.isnan(boxes[other, :, 0])
-                               & (_overlap(boxes[slot], boxes[other]) <= GROUPED))
+                               & (box_containment(boxes[slot], boxes[other]) <= GROUPED))
         for axis in (0, 1):
             size = np.minimum(usual[slot, grouped, axis], box[:, 2 + axis])
             room = box[:, 2 + axis] - size

@@ -210,6 +210,7 @@ def test_process_bag_sigint_leaves_valid_partial_outputs(venv_bin: Path, tmp_pat
     (["-p", "eps:=-1"], "eps must be > 0"),
     (["-p", "epsilon:=3"], "unknown parameter(s): epsilon"),
     (["-p", "max_faces:=2.5"], "must be an integer"),
+    (["-p", "chunk:=50"], "chunk must be 0 (whole bag) or at least 4 x tau"),
 ])
 def test_process_bag_refuses_bad_parameters(ros_bag: Path, venv_bin: Path, tmp_path: Path, args: list[str],
                                             pattern: str) -> None:

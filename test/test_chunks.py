@@ -151,3 +151,16 @@ def test_an_object_away_across_a_chunk_border_comes_back_with_its_id(monkeypatch
     assert frames[1] == list(range(0, 91)) + list(range(170, 240))   # A, then B
     assert frames[2] == list(range(0, 61)) + list(range(200, 240))   # D, then E
     assert frames[3] == list(range(180, 240))                         # C: new
+
+
+def test_timeline_bars_are_the_runs_of_frames(tmp_path) -> None:
+    from trap_core.outputs import track_timeline
+    from trap_core.outputs.timeline import _runs
+    assert _runs(np.array([3, 4, 5, 9, 11, 12])) == [(3, 3), (9, 1), (11, 2)] and _runs(np.array([])) == []
+    track = _line(1, 0, 99, 0, 50)
+    track = Track(1, track.frames, track.boxes, track.score, 1, np.where(np.arange(100)[:, None] < 50, 1.0, np.nan)
+                  * np.ones((100, 2)))
+    path = track_timeline([track], 300, tmp_path / "timeline.png", chunk_starts=[0, 150])
+    import cv2
+    image = cv2.imread(str(path))
+    assert image is not None and image.shape[1] == 1000

@@ -172,7 +172,7 @@ def test_process_bag_writes_every_output_and_matches_the_core_pipeline(ros_bag: 
     assert summary["frames"] == 60 and not summary["interrupted"] and summary["counts"]["tracks"] >= 1
     assert summary["counts"]["chunks"] == chunks
     assert summary["parameters"]["segmentation"] == "colour"  # the segmentation node's, not a default
-    assert (out / "tracks.png").stat().st_size > 1000
+    assert (out / "tracks.png").stat().st_size > 1000 and (out / "timeline.png").stat().st_size > 1000
     from rosbags.highlevel import AnyReader
     with AnyReader([out / "tracks.mcap"]) as reader:
         counts = {c.topic: c.msgcount for c in reader.connections}

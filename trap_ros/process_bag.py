@@ -4,7 +4,8 @@ process on a multi-threaded executor; results written to ``--out``:
 - ``tracks.mcap``: every output topic (detections, tracks, trajectories);
 - ``tracks.txt``: MOTChallenge rows ``frame,id,x,y,w,h,conf,-1,-1,-1`` (frame 1-based);
 - ``summary.json``: parameters, counts, per-stage times, whether the run was interrupted;
-- ``tracks.png``: a contact sheet of frames with the tracks drawn.
+- ``tracks.png``: a contact sheet of frames with the tracks drawn;
+- ``timeline.png``: which track is seen (or inferred) in which frames, chunk borders marked.
 """
 from __future__ import annotations
 
@@ -145,7 +146,7 @@ def _main() -> int:
         run.outputs["tracks.mcap"] = str(write_results_bag(args.out / "tracks.mcap", mining.published))
         tracks = len(mining.result.tracks) if mining.result else 0
         print(f"{tracks} tracks over {run.frames} frames{' (interrupted)' if interrupted else ''}; "
-              f"results in {args.out}: tracks.mcap, tracks.txt, summary.json, tracks.png")
+              f"results in {args.out}: tracks.mcap, tracks.txt, summary.json, tracks.png, timeline.png")
         if mining.error:
             raise UsageError(mining.error)
         return 130 if interrupted else 0

@@ -1,4 +1,5 @@
-"""Run TRAP on a bag end to end and write its outputs (tracks.txt, summary.json, tracks.png)."""
+"""Run TRAP on a bag end to end and write its outputs (tracks.txt, summary.json, tracks.png,
+timeline.png)."""
 from __future__ import annotations
 
 import json
@@ -10,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from trap_core.bagio import open_image_stream
-from trap_core.outputs import Thumbnails, contact_sheet, write_tracks_mot
+from trap_core.outputs import Thumbnails, contact_sheet, track_timeline, write_tracks_mot
 from trap_core.pipeline.chunks import ChunkedRun, ChunkedTracker
 from trap_core.pipeline.frames_to_graphs import graphs_of
 from trap_core.pipeline.params import TrapParams
@@ -76,7 +77,8 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
 
 def write_outputs(run: BagRun, bag: str | Path, out: Path, params: TrapParams,
                   thumbnails: dict[int, np.ndarray], scale: float) -> None:
-    """tracks.txt (MOTChallenge), tracks.png (contact sheet) and summary.json."""
+    """tracks.txt (MOTChallenge), tracks.png (contact sheet), timeline.png (which track is seen
+    when) and summary.json."""
     tracks = run.tracking.tracks if run.tracking else []
     chunks = run.tracking.chunks if run.tracking else []
     run.outputs["tracks.txt"] = str(out / "tracks.txt")
@@ -84,6 +86,9 @@ def write_outputs(run: BagRun, bag: str | Path, out: Path, params: TrapParams,
     shown = {f: t for f, t in thumbnails.items() if f < run.frames}
     if shown:
         run.outputs["tracks.png"] = str(contact_sheet(shown, tracks, scale, out / "tracks.png"))
+    if run.frames:
+        run.outputs["timeline.png"] = str(track_timeline(tracks, run.frames, out / "timeline.png",
+                                                         [c.first_frame for c in chunks]))
     summary = {
         "bag": str(bag), "topic": run.topic, "frames": run.frames, "interrupted": run.interrupted,
         "parameters": params.as_dict(),

@@ -13,8 +13,8 @@ the view (or appears inside it) takes the id of a previous chunk's track that en
 started, left the view the same way (or vanished inside it), and is made of the same
 structures: for one of the two, the share of its occurrences whose plane patterns the other
 also has is at least ``rejoin_similarity``; most similar first, one to one. Each chunk gives the
-boxes of its frames up to the middle of the overlap with the next one; those are final as soon
-as the next chunk is tracked, while later frames are still read.
+boxes of its frames up to the middle of the overlap with the next one (ids decided by then); they
+are final as soon as the chunk is tracked, while later frames are still read.
 """
 from __future__ import annotations
 

@@ -309,6 +309,18 @@ def test_robust_beats_paper_on_a_short_video(short_video) -> None:
     assert min(robust[:2]) > 0.5
 
 
+def test_a_turning_zooming_camera_is_told_from_the_objects() -> None:
+    """The camera's motion is a similarity per frame pair: a camera that yaws and zooms is
+    compensated like a pan (without it, min_speed 0, chains of background are the tracks)."""
+    from trap_core.evaluation import match_objects
+    params = TrapParams(segmentation="colour")
+    graphs, truth = synthetic_graphs(SceneConfig(width=320, height=240, frames=240, seed=1, rotation=12.0,
+                                                 zoom=0.15), params)
+    tracks = track(graphs, params).tracks
+    assert len(tracks) == 3
+    assert all(p >= 0.9 and r >= 0.9 for _, p, r in match_objects([_boxes(t) for t in tracks], truth))
+
+
 def test_mining_in_windows_keeps_the_tracks(short_video) -> None:
     graphs, _ = short_video
     whole = track(graphs, TrapParams(**{**_BASE.as_dict(), "mining_window": 0}))

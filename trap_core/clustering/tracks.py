@@ -31,10 +31,7 @@ class Track:
 
 def box_iou(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Intersection over union of boxes ``(x, y, w, h)`` (last axis), broadcast over the others."""
-    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
-    ix = np.minimum(a[..., 0] + a[..., 2], b[..., 0] + b[..., 2]) - np.maximum(a[..., 0], b[..., 0])
-    iy = np.minimum(a[..., 1] + a[..., 3], b[..., 1] + b[..., 3]) - np.maximum(a[..., 1], b[..., 1])
-    inter = np.clip(ix, 0, None) * np.clip(iy, 0, None)
+    a, b, inter = _intersection(a, b)
     union = a[..., 2] * a[..., 3] + b[..., 2] * b[..., 3] - inter
     return np.where(union > 0, inter / np.where(union > 0, union, 1), 0.0)
 
@@ -42,12 +39,18 @@ def box_iou(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def box_containment(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Share of the smaller of boxes ``a``, ``b`` ``(x, y, w, h)`` (last axis) that lies in the
     other, broadcast over the others (0 where a box is absent: NaN)."""
+    a, b, inter = _intersection(a, b)
+    smaller = np.minimum(a[..., 2] * a[..., 3], b[..., 2] * b[..., 3])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.nan_to_num(inter / smaller, posinf=0.0)
+
+
+def _intersection(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``a`` and ``b`` as float arrays, and the area their boxes share (broadcast)."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
     ix = np.minimum(a[..., 0] + a[..., 2], b[..., 0] + b[..., 2]) - np.maximum(a[..., 0], b[..., 0])
     iy = np.minimum(a[..., 1] + a[..., 3], b[..., 1] + b[..., 3]) - np.maximum(a[..., 1], b[..., 1])
-    smaller = np.minimum(a[..., 2] * a[..., 3], b[..., 2] * b[..., 3])
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.nan_to_num(np.clip(ix, 0, None) * np.clip(iy, 0, None) / smaller, posinf=0.0)
+    return a, b, np.clip(ix, 0, None) * np.clip(iy, 0, None)
 
 
 def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, track_id: int,

@@ -4,7 +4,7 @@ from trap_core.clustering.distance import pattern_distances
 from trap_core.clustering.errors import ClusteringError
 from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns, labels_after_merges, lifetime_cut
 from trap_core.clustering.selection import ClusterSummary, select_clusters, summarise
-from trap_core.clustering.tracks import Track, box_containment, box_iou, build_track
+from trap_core.clustering.tracks import Track, box_containment, box_iou, build_track, with_frames
 from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
 
 __all__ = [
@@ -26,4 +26,5 @@ __all__ = [
     "select_clusters",
     "summarise",
     "trajectories",
+    "with_frames",
 ]

@@ -1,6 +1,7 @@
 """Tracks: per-frame boxes of the selected clusters (TRAP_SPEC section 7)."""
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -27,6 +28,19 @@ class Track:
 
     def __len__(self) -> int:
         return int(self.frames.size)
+
+
+def with_frames(track: Track, frames: np.ndarray, boxes: np.ndarray, score: np.ndarray,
+                points: np.ndarray | None) -> Track:
+    """``track`` with boxes (confidences, points) added in ``frames``, which it does not cover,
+    kept in frame order; no points at all unless both sides have them."""
+    every = np.concatenate([track.frames, frames])
+    order = np.argsort(every, kind="stable")
+    merged_points = None
+    if track.points is not None and points is not None:
+        merged_points = np.vstack([track.points, points])[order]
+    return dataclasses.replace(track, frames=every[order], boxes=np.vstack([track.boxes, boxes])[order],
+                               score=np.concatenate([track.score, score])[order], points=merged_points)
 
 
 def box_iou(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, box_containment, box_iou
+from trap_core.clustering import Track, box_containment, box_iou, with_frames
 
 
 def merge_duplicates(tracks: Sequence[Track], min_common: int, min_iou: float = 0.5, min_inside: float = 0.9,
@@ -49,10 +49,5 @@ def _same_object(a: Track, b: Track, min_common: int, min_iou: float, min_inside
 def _union(kept: Track, other: Track) -> Track:
     """``kept`` with ``other``'s frames that it does not cover."""
     extra = ~np.isin(other.frames, kept.frames)
-    frames = np.concatenate([kept.frames, other.frames[extra]])
-    order = np.argsort(frames, kind="stable")
-    points = None
-    if kept.points is not None and other.points is not None:
-        points = np.vstack([kept.points, other.points[extra]])[order]
-    return dataclasses.replace(kept, frames=frames[order], boxes=np.vstack([kept.boxes, other.boxes[extra]])[order],
-                               score=np.concatenate([kept.score, other.score[extra]])[order], points=points)
+    return with_frames(kept, other.frames[extra], other.boxes[extra], other.score[extra],
+                       None if other.points is None else other.points[extra])

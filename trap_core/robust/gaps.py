@@ -9,11 +9,9 @@ own (``points`` NaN) and half the track's lowest observed confidence.
 """
 from __future__ import annotations
 
-import dataclasses
-
 import numpy as np
 
-from trap_core.clustering import Track
+from trap_core.clustering import Track, with_frames
 
 
 def fill_gaps(track: Track, max_gap: int) -> Track:
@@ -32,11 +30,5 @@ def with_inferred(track: Track, frames: np.ndarray, boxes: np.ndarray) -> Track:
     """The track with boxes added in ``frames`` (which it does not cover), where the object is
     inferred, not seen: no patterns of their own (``points`` NaN), half the track's lowest
     observed confidence."""
-    every = np.concatenate([track.frames, frames])
-    order = np.argsort(every, kind="stable")
-    score = np.r_[track.score, np.full(len(frames), 0.5 * float(track.score.min()))]
-    points = None
-    if track.points is not None:
-        points = np.vstack([track.points, np.full((len(frames), 2), np.nan)])[order]
-    return dataclasses.replace(track, frames=every[order], boxes=np.vstack([track.boxes, boxes])[order],
-                               score=score[order], points=points)
+    return with_frames(track, frames, boxes, np.full(len(frames), 0.5 * float(track.score.min())),
+                       np.full((len(frames), 2), np.nan))

@@ -89,12 +89,10 @@ def border_contacts(result: MiningResult, patterns: np.ndarray, width: int, heig
                     margin: float = 0.25) -> tuple[np.ndarray, np.ndarray]:
     """Per spatio-temporal pattern of ``patterns``: whether its first and its last occurrence
     boxes reach the image border (:func:`reaches_border`: entering, leaving the view)."""
-    def touches(rows: np.ndarray) -> np.ndarray:
-        box = result.occ_box[rows].astype(float)
-        return reaches_border(np.column_stack([box[:, :2], box[:, 2:] - box[:, :2] + 1]), width, height, margin)
     first = result.st_rows[result.st_offsets[patterns]]
     last = result.st_rows[result.st_offsets[patterns + 1] - 1]
-    return touches(first), touches(last)
+    return (_occurrences_reach_border(result, first, width, height, margin),
+            _occurrences_reach_border(result, last, width, height, margin))
 
 
 def border_share(result: MiningResult, patterns: np.ndarray, labels: np.ndarray, width: int,
@@ -103,10 +101,16 @@ def border_share(result: MiningResult, patterns: np.ndarray, labels: np.ndarray,
     regions reach the image's edge. Regions cut by the view have barycentres that move with
     the crop, not with what they show: a cluster seen mostly so is no evidence of motion."""
     rows, owner = result.rows_of(patterns)
-    box = result.occ_box[rows].astype(float)
-    cut = reaches_border(np.column_stack([box[:, :2], box[:, 2:] - box[:, :2] + 1]), width, height, margin=0.0)
+    cut = _occurrences_reach_border(result, rows, width, height, margin=0.0)
     cluster = labels[owner]
     return np.bincount(cluster, weights=cut) / np.maximum(np.bincount(cluster), 1)
+
+
+def _occurrences_reach_border(result: MiningResult, rows: np.ndarray, width: float, height: float,
+                              margin: float) -> np.ndarray:
+    """:func:`reaches_border` of occurrences ``rows`` (their region boxes are x0, y0, x1, y1 inclusive)."""
+    box = result.occ_box[rows].astype(float)
+    return reaches_border(np.column_stack([box[:, :2], box[:, 2:] - box[:, :2] + 1]), width, height, margin)
 
 
 def reaches_border(boxes: np.ndarray, width: float, height: float, margin: float = 0.25) -> np.ndarray:

@@ -10,7 +10,7 @@ from trap_core.pipeline import ChunkedTracker, ParameterError, TrapParams, synth
 from trap_core.synthetic import SceneConfig
 
 
-_FRAME = type("Graph", (), {"bbox": np.array([[0, 0, 639, 479]])})()  # a 640x480 frame's graph, to the tracker
+_FRAME = type("Graph", (), {"frame_size": (640.0, 480.0)})()  # a 640x480 frame's graph, to the tracker
 
 
 class _Stub:

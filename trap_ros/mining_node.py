@@ -35,7 +35,6 @@ class MiningNode(Node):
         declare_trap_parameters(self, MINING_STAGE)
         self.params = trap_parameters(self, MINING_STAGE)
         self.tracker = ChunkedTracker(self.params)
-        self.received = 0
         self.regions = 0  # summed over the frames received
         self.headers: list[Header] = []
         self.expected: int | None = None
@@ -53,13 +52,17 @@ class MiningNode(Node):
         self.create_subscription(CompressedImage, "graph", self._on_graph, PIPELINE)
         self.create_subscription(UInt64, "end_of_bag", self._on_end, LATCHED)
 
+    @property
+    def received(self) -> int:
+        """Graphs received (one header kept per graph)."""
+        return len(self.headers)
+
     def _on_graph(self, message: CompressedImage) -> None:
         graph = message_graph(message)
         with self._lock:  # windows are mined here, while later frames are being segmented
             if self._started:
                 return
             self.headers.append(message.header)
-            self.received += 1
             self.regions += graph.n_nodes
             try:
                 self.tracker.add(graph, message.header.stamp.sec * 1_000_000_000 + message.header.stamp.nanosec)

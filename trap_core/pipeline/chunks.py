@@ -182,7 +182,7 @@ class ChunkedTracker:
     def _returned(self, previous: list[Track], current: list[Track], structures: list[dict[int, float]],
                   continued: dict[int, int]) -> dict[int, int]:
         """{index in ``current``: id of the previous chunk's track whose object it is, come back}."""
-        width, height = (float(self._graphs[0].bbox[:, axis].max() + 1) for axis in (2, 3))
+        width, height = self._graphs[0].frame_size
         taken = set(continued.values())
         ended = [t for t in previous if t.track_id not in taken]
         matches = []

@@ -53,7 +53,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     """
     seconds: dict[str, float] = {}
     n_frames = len(graphs)
-    width, height = (float(graphs[0].bbox[:, axis].max() + 1) for axis in (2, 3))  # regions tile the frame
+    width, height = graphs[0].frame_size
     robust = params.method == "robust"
     if miner is None:
         miner = PatternMiner(params, n_frames)

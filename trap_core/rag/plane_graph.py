@@ -42,6 +42,11 @@ class PlaneGraph:
         return self.n_nodes
 
     @property
+    def frame_size(self) -> tuple[float, float]:
+        """(width, height) of the frame: its regions tile it."""
+        return float(self.bbox[:, 2].max() + 1), float(self.bbox[:, 3].max() + 1)
+
+    @property
     def n_faces(self) -> int:
         return self.face_offsets.size - 1
 

@@ -355,6 +355,35 @@ def test_boxes_grow_over_the_parts_that_move_with_the_track_only() -> None:
                                [60, 40, 20, 20])  # a track that does not move with the parts takes none
 
 
+def test_a_still_region_the_object_crosses_leaves_its_box_and_its_parts_stay() -> None:
+    """Most faces on the object's edge hold the block it crosses: the core box becomes the block."""
+    from trap_core.clustering import build_track
+    from trap_core.mining import MiningParams, mine
+    from trap_core.robust import drop_still_regions
+    params = TrapParams(segmentation="colour")
+    graphs, truth = [], []
+    for t in range(30):
+        rgb = np.full((120, 240, 3), 40, np.uint8)
+        rgb[30:80, 90:150] = (0, 0, 200)  # a still block of about the object's size
+        x = 40 + 4 * t
+        rgb[45:65, x:x + 35] = (0, 200, 0)  # the object: a body with spots on its edges and inside
+        rgb[45:51, x + 4:x + 10], rgb[45:51, x + 10:x + 16] = (200, 0, 0), (200, 200, 0)
+        rgb[59:65, x + 20:x + 26], rgb[59:65, x + 26:x + 32] = (0, 200, 200), (200, 0, 200)
+        rgb[53:57, x + 4:x + 8], rgb[53:57, x + 8:x + 12] = (250, 250, 250), (120, 60, 0)
+        graphs.append(frame_graph(rgb, params))
+        truth.append((x, 45, 35, 20))
+    result = mine(graphs, MiningParams(eps=40.0, tau=5, freq_st_min=10, max_faces=3, linking="assignment", reach=0.8))
+    labels = np.full(result.n_st, -1)
+    for pattern in range(result.n_st):
+        rows = result.st(pattern)
+        x0 = np.array([truth[f][0] for f in result.occ_frame[rows]])
+        labels[pattern] = 0 if np.all(np.abs(result.occ_position[rows, 0] - x0 - 17) < 18) else -1
+    built = build_track(result, labels, 0, 1, graphs, core_share=0.8)
+    assert np.any(built.boxes[:, 2] >= 60)  # without the rule the block is in the box while crossed
+    trimmed = drop_still_regions(built, result, labels, graphs, np.tile(np.eye(3), (30, 1, 1)), 0.8, lag=2)
+    np.testing.assert_allclose(trimmed.boxes, [truth[f] for f in trimmed.frames])
+
+
 def test_a_cluster_on_two_objects_at_once_is_split_down_the_hierarchy() -> None:
     from scipy.cluster.hierarchy import linkage
     from trap_core.clustering import Hierarchy, pattern_distances

@@ -4,7 +4,8 @@ from trap_core.clustering.distance import pattern_distances
 from trap_core.clustering.errors import ClusteringError
 from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns, labels_after_merges, lifetime_cut
 from trap_core.clustering.selection import ClusterSummary, select_clusters, summarise
-from trap_core.clustering.tracks import Track, box_containment, box_iou, build_track, with_frames
+from trap_core.clustering.tracks import (Track, box_containment, box_iou, build_track, core_regions, frame_face_sets,
+                                        with_frames)
 from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
 
 __all__ = [
@@ -19,6 +20,8 @@ __all__ = [
     "box_iou",
     "build_track",
     "cluster_patterns",
+    "core_regions",
+    "frame_face_sets",
     "labels_after_merges",
     "lifetime_cut",
     "observed_paths",

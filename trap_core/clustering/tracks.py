@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -93,9 +93,11 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     np.maximum.at(x1, inverse, boxes[:, 2])
     np.maximum.at(y1, inverse, boxes[:, 3])
     if graphs is not None and core_share > 0:
-        for slot, frame in enumerate(known):
-            x0[slot], y0[slot], x1[slot], y1[slot] = _core_box(graphs[frame], result.occ_faces[rows[inverse == slot]],
-                                                               core_share)
+        for slot, (frame, face_sets) in enumerate(frame_face_sets(result, patterns)):
+            core, _ = core_regions(graphs[frame], face_sets, core_share)
+            parts = graphs[frame].bbox[core]
+            x0[slot], y0[slot] = parts[:, 0].min(), parts[:, 1].min()
+            x1[slot], y1[slot] = parts[:, 2].max(), parts[:, 3].max()
     seen = np.unique(np.column_stack([inverse, owner]), axis=0)[:, 0]
     per_frame = np.bincount(seen, minlength=known.size).astype(float)
     score = per_frame / per_frame.max() if per_frame.size else per_frame
@@ -105,13 +107,26 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     return Track(track_id, known, np.column_stack([x0, y0, x1 - x0 + 1, y1 - y0 + 1]), score, cluster, points)
 
 
-def _core_box(graph: PlaneGraph, face_sets: np.ndarray, share: float) -> tuple[float, float, float, float]:
-    """Box around the regions that most of the occurrences (face sets) of one frame contain."""
+def frame_face_sets(result: MiningResult, patterns: np.ndarray) -> Iterator[tuple[int, np.ndarray]]:
+    """Per frame where any of ``patterns`` occurs, in frame order: the frame and the face sets of
+    those occurrences (rows of ``occ_faces``)."""
+    rows, _ = result.rows_of(patterns)
+    frames = result.occ_frame[rows]
+    order = np.argsort(frames, kind="stable")
+    known, starts = np.unique(frames[order], return_index=True)
+    for frame, start, stop in zip(known.tolist(), starts, np.r_[starts[1:], order.size]):
+        yield frame, result.occ_faces[rows[order[start:stop]]]
+
+
+def core_regions(graph: PlaneGraph, face_sets: np.ndarray, share: float) -> tuple[np.ndarray, np.ndarray]:
+    """Regions (graph nodes) that at least ``share`` of one frame's occurrences (face sets)
+    contain, as many as the most shared region, and those most shared ones: the track's box
+    surrounds the first (:func:`build_track`); the second are the object itself, whatever else
+    its patterns hold."""
     counts: dict[int, int] = {}
     for faces in face_sets:
         for node in np.unique(np.concatenate([graph.face_nodes(f) for f in faces if f >= 0])).tolist():
             counts[node] = counts.get(node, 0) + 1
-    top = max(counts.values())
-    core = np.array([node for node, count in counts.items() if count >= share * top])
-    boxes = graph.bbox[core]
-    return boxes[:, 0].min(), boxes[:, 1].min(), boxes[:, 2].max(), boxes[:, 3].max()
+    nodes = np.fromiter(counts.keys(), dtype=np.int64, count=len(counts))
+    seen = np.fromiter(counts.values(), dtype=np.int64, count=len(counts))
+    return nodes[seen >= share * seen.max()], nodes[seen == seen.max()]

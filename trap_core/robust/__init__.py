@@ -1,5 +1,5 @@
 """Beyond the paper: camera-motion compensation, object/background split, fragment rejoining,
-track boxes where objects meet."""
+track boxes without the background and where objects meet."""
 
 from trap_core.robust.borders import continue_to_border
 from trap_core.robust.camera import camera_transforms, cluster_world_speed, world_speed
@@ -9,6 +9,8 @@ from trap_core.robust.gaps import fill_gaps
 from trap_core.robust.groups import separate_groups
 from trap_core.robust.mixed import pattern_sizes, split_mixed
 from trap_core.robust.rejoin import border_contacts, border_share, reaches_border, rejoin_fragments
+from trap_core.robust.still import drop_still_regions
 
-__all__ = ["border_contacts", "border_share", "camera_transforms", "cluster_world_speed", "continue_to_border", "fill_gaps", "grow_boxes", "merge_duplicates", "pattern_sizes",
-           "reaches_border", "rejoin_fragments", "separate_groups", "split_mixed", "world_speed"]
+__all__ = ["border_contacts", "border_share", "camera_transforms", "cluster_world_speed", "continue_to_border",
+           "drop_still_regions", "fill_gaps", "grow_boxes", "merge_duplicates", "pattern_sizes", "reaches_border",
+           "rejoin_fragments", "separate_groups", "split_mixed", "world_speed"]

@@ -1,0 +1,100 @@
+"""Background out of core boxes: regions that stay where the camera puts them (ours).
+
+A track's core box surrounds the regions most of its occurrences in a frame contain
+(:func:`trap_core.clustering.core_regions`). A face of the plane graph is bounded by the object
+and by the regions around it, so where an object crosses a background region of about its own
+size, nearly every pattern on the object also holds that region, and the box takes it in for as
+long as the crossing lasts (400x300: a box 73 px wide on an object 40 px wide for 95 frames;
+too long for the usual-size rule of ``size_jump``, whose running median it shifts). The object
+itself is the region the most occurrences hold. Each other core region is tested the way grown
+boxes test their candidates, but for the opposite evidence: ``lag`` frames before and after,
+is it found again (same label, area within a factor 2, as the object hides more or less of it)
+closer to where the camera's motion puts it than to where the track's motion does? A region
+that stays with the background in every frame tested leaves the box. Regions split by noise
+that cannot be found again at all are kept: only evidence of standing still removes one.
+"""
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+
+import numpy as np
+
+from trap_core.clustering import Track, core_regions, frame_face_sets
+from trap_core.mining import MiningResult
+from trap_core.rag import PlaneGraph
+
+AREA_FACTOR = 2.0  # a background region the object passes over loses or regains what it hides
+
+
+def drop_still_regions(track: Track, result: MiningResult, pattern_labels: np.ndarray,
+                       graphs: Sequence[PlaneGraph], transforms: np.ndarray, share: float, lag: int) -> Track:
+    """The track with each core box rebuilt without the core regions that stand still.
+
+    Parameters
+    ----------
+    track : Track
+        As built from its cluster (:func:`trap_core.clustering.build_track`), with its points.
+    result, pattern_labels : MiningResult, (S,) array
+        The mining and the cluster of every spatio-temporal pattern (``track.cluster`` is one).
+    graphs : sequence of PlaneGraph
+        Plane graph of every frame of the video.
+    transforms : (n_frames, 3, 3) array
+        Camera motion, frame 0 to frame ``t`` (:func:`trap_core.robust.camera_transforms`).
+    share : float
+        ``core_share`` of the core boxes.
+    lag : int
+        Frames before and after where a region is looked for again.
+
+    Returns
+    -------
+    Track
+    """
+    slot = np.full(len(graphs), -1)
+    slot[track.frames] = np.arange(len(track))
+    boxes = track.boxes.astype(float).copy()
+    patterns = np.flatnonzero(pattern_labels == track.cluster)
+    for frame, face_sets in frame_face_sets(result, patterns):
+        i = slot[frame]
+        core, anchor = core_regions(graphs[frame], face_sets, share)
+        others = np.setdiff1d(core, anchor)
+        if i < 0 or others.size == 0:
+            continue
+        still = _standing_still(graphs, transforms, track.points, slot, frame, others, lag)
+        if still.any():
+            parts = graphs[frame].bbox[np.r_[anchor, others[~still]]]
+            x0, y0 = parts[:, 0].min(), parts[:, 1].min()
+            boxes[i] = (x0, y0, parts[:, 2].max() - x0 + 1, parts[:, 3].max() - y0 + 1)
+    return dataclasses.replace(track, boxes=boxes)
+
+
+def _standing_still(graphs: Sequence[PlaneGraph], transforms: np.ndarray, points: np.ndarray, slot: np.ndarray,
+                    frame: int, regions: np.ndarray, lag: int) -> np.ndarray:
+    """Mask of ``regions`` of ``frame`` found again nearer where the camera puts them than where the
+    track's points move, in every frame ``lag`` away (before, after) that the track covers."""
+    here = graphs[frame]
+    still = np.ones(regions.size, dtype=bool)
+    tested = False
+    for other in (frame - lag, frame + lag):
+        j = slot[other] if 0 <= other < len(graphs) else -1
+        if j < 0:
+            continue
+        shift = points[j] - points[slot[frame]]
+        if np.isnan(shift).any():
+            continue
+        tested = True
+        there = graphs[other]
+        camera = transforms[other] @ np.linalg.inv(transforms[frame])
+        for k, region in enumerate(regions.tolist()):
+            look_alike = ((there.label == here.label[region]) & (there.area < AREA_FACTOR * here.area[region])
+                          & (AREA_FACTOR * there.area > here.area[region]))
+            if not look_alike.any():
+                still[k] = False
+                continue
+            centroid = here.centroid[region]
+            moved = camera @ np.r_[centroid, 1.0]
+            candidates = there.centroid[look_alike]
+            with_track = np.hypot(*(candidates - (centroid + shift)).T).min()
+            with_camera = np.hypot(*(candidates - moved[:2] / moved[2]).T).min()
+            still[k] &= with_camera < with_track
+    return still & tested

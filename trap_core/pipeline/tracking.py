@@ -14,7 +14,8 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed, continue_to_border,
-                              drop_still_regions, fill_gaps, grow_boxes, merge_duplicates, pattern_sizes, rejoin_fragments, separate_groups, split_mixed, world_speed)
+                              drop_still_regions, fill_gaps, grow_boxes, merge_duplicates, pattern_sizes,
+                              rejoin_fragments, separate_groups, split_mixed, world_speed)
 
 
 @dataclass
@@ -99,8 +100,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     tracks = [build_track(mined, all_labels, cluster, track_id, graphs, params.core_share if robust else 0.0)
               for track_id, cluster in enumerate(selected, start=1)]
     if robust and params.still_regions and params.core_share > 0:
-        tracks = [drop_still_regions(t, mined, all_labels, graphs, transforms, params.core_share, max(1, params.tau // 5))
-                  for t in tracks]
+        lag = max(1, params.tau // 5)
+        tracks = [drop_still_regions(t, mined, all_labels, graphs, transforms, params.core_share, lag) for t in tracks]
     if robust and params.grow:
         tracks = [grow_boxes(t, graphs, transforms, lag=max(1, params.tau // 5)) for t in tracks]
     if robust and params.fill_gaps:

@@ -73,9 +73,10 @@ class TrapParams:
     rejoin_similarity: float = _p(0.3, "robust: share of a fragment (counted in occurrences) whose structures the "
                                        "other also has, needed to rejoin them")
     core_share: float = _p(0.8, "robust: track box from regions in at least this share of the occurrences; 0 = all")
-    still_regions: bool = _p(True, "robust: a core region found again, tau/5 frames before and after, nearer where the "
-                                   "camera's motion puts it than where the track's does is background the object "
-                                   "crosses: it leaves the box (the region most occurrences hold stays)")
+    still_regions: bool = _p(True, "robust: a core region found again, tau/5 frames before and after, at most half as "
+                                   "far from where the camera's motion puts it as from where the track's does is "
+                                   "background the object crosses: it leaves the box (the region most occurrences "
+                                   "hold stays)")
     size_jump: float = _p(1.5, "robust: a track box this many times wider or taller than its usual size (running "
                                "median over 4 tau frames each side where it is alone) holds more than the object: it "
                                "is given the usual size; 0 = off")

@@ -9,9 +9,11 @@ too long for the usual-size rule of ``size_jump``, whose running median it shift
 itself is the region the most occurrences hold. Each other core region is tested the way grown
 boxes test their candidates, but for the opposite evidence: ``lag`` frames before and after,
 is it found again (same label, area within a factor 2, as the object hides more or less of it)
-closer to where the camera's motion puts it than to where the track's motion does? A region
-that stays with the background in every frame tested leaves the box. Regions split by noise
-that cannot be found again at all are kept: only evidence of standing still removes one.
+at most half as far from where the camera's motion puts it as from where the track's motion
+does (the mirror of the grown boxes' test: in between, nothing is decided)? A region that stays
+with the background in every frame tested leaves the box. Regions split by noise that cannot be
+found again at all are kept: only evidence of standing still removes one, and an object that
+moves slowly relative to the background, where the two predictions are close, keeps its parts.
 """
 from __future__ import annotations
 
@@ -70,8 +72,9 @@ def drop_still_regions(track: Track, result: MiningResult, pattern_labels: np.nd
 
 def _standing_still(graphs: Sequence[PlaneGraph], transforms: np.ndarray, points: np.ndarray, slot: np.ndarray,
                     frame: int, regions: np.ndarray, lag: int) -> np.ndarray:
-    """Mask of ``regions`` of ``frame`` found again nearer where the camera puts them than where the
-    track's points move, in every frame ``lag`` away (before, after) that the track covers."""
+    """Mask of ``regions`` of ``frame`` found again at most half as far from where the camera puts
+    them as from where the track's points move, in every frame ``lag`` away (before, after) that
+    the track covers."""
     here = graphs[frame]
     still = np.ones(regions.size, dtype=bool)
     tested = False
@@ -96,5 +99,5 @@ def _standing_still(graphs: Sequence[PlaneGraph], transforms: np.ndarray, points
             candidates = there.centroid[look_alike]
             with_track = np.hypot(*(candidates - (centroid + shift)).T).min()
             with_camera = np.hypot(*(candidates - moved[:2] / moved[2]).T).min()
-            still[k] &= with_camera < with_track
+            still[k] &= 2 * with_camera < with_track
     return still & tested

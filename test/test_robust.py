@@ -309,6 +309,12 @@ def test_robust_beats_paper_on_a_short_video(short_video) -> None:
     assert min(robust[:2]) > 0.5
 
 
+def test_a_video_where_nothing_moves_relative_to_the_camera_has_no_tracks() -> None:
+    """No pattern passes the speed test, so no cluster is left: 0 tracks, not an error."""
+    graphs, _ = synthetic_graphs(SceneConfig(width=96, height=72, frames=120), TrapParams())
+    assert track(graphs, TrapParams()).tracks == []
+
+
 def test_a_turning_zooming_camera_is_told_from_the_objects() -> None:
     """The camera's motion is a similarity per frame pair: a camera that yaws and zooms is
     compensated like a pan (without it, min_speed 0, chains of background are the tracks)."""

@@ -206,6 +206,19 @@ def test_process_bag_sigint_leaves_valid_partial_outputs(venv_bin: Path, tmp_pat
         assert {c.topic: c.msgcount for c in reader.connections}["/trap/detections"] == summary["frames"]
 
 
+def test_process_bag_with_nothing_to_track_writes_every_output(venv_bin: Path, tmp_path: Path) -> None:
+    """Frames too small for any pattern to move: 0 tracks is a result, not an error."""
+    bag, _ = write_synthetic(SceneConfig(width=96, height=72, frames=120), tmp_path / "tiny")
+    done = _process_bag(venv_bin / "process_bag", bag, tmp_path / "out")
+    assert done.returncode == 0, done.stderr[-2000:]
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["frames"] == 120 and summary["counts"]["tracks"] == 0
+    from rosbags.highlevel import AnyReader
+    with AnyReader([tmp_path / "out" / "tracks.mcap"]) as reader:
+        counts = {c.topic: c.msgcount for c in reader.connections}
+    assert counts["/trap/detections"] == 120 and counts["/trap/tracks"] == 0 and counts["/trap/trajectories"] == 0
+
+
 @pytest.mark.parametrize("args,pattern", [
     (["-p", "eps:=-1"], "eps must be > 0"),
     (["-p", "epsilon:=3"], "unknown parameter(s): epsilon"),

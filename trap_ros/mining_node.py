@@ -125,10 +125,11 @@ class MiningNode(Node):
                     self.get_logger().warning(f"{self.received} frame(s): too few to track")
             if self.result is not None:
                 self.published["tracks"] = track_arrays(self.headers, self.result.tracks)
-                self.published["trajectories"] = [trajectory_markers(self.headers[0], self.result.tracks)]
                 for message in self.published["tracks"]:
                     self.tracks_pub.publish(message)
-                self.trajectories_pub.publish(self.published["trajectories"][0])
+                markers = trajectory_markers(self.headers[0], self.result.tracks)
+                self.trajectories_pub.publish(markers)  # empty when nothing was tracked: latched all the same
+                self.published["trajectories"] = [markers] if markers.markers else []  # recorded at its stamp
                 self.get_logger().info(f"{len(self.result.tracks)} tracks published")
         except Exception as error:  # reported, never swallowed: the run ends with an error
             self._fail(error)

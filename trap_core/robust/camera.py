@@ -100,6 +100,8 @@ def cluster_world_speed(summary: ClusterSummary, transforms: np.ndarray, lag: in
     of background patterns that each passed the speed threshold on noise is seen still here.
     """
     frames = [np.flatnonzero(covered) for covered in summary.covered]
+    if not frames:  # nothing moved: no cluster
+        return np.zeros(0)
     paths = summary.paths
     observed = ObservedPaths(np.repeat(np.arange(len(frames)), [f.size for f in frames]),
                              np.concatenate(frames),

@@ -99,8 +99,8 @@ def test_topic_choice(tmp_path: Path) -> None:
     with Writer(tmp_path / "two", version=9) as writer:
         for topic in ("/left", "/right"):
             connection = writer.add_connection(topic, Image.__msgtype__, typestore=store)
-            message = Image(header=Header(stamp=Time(sec=1, nanosec=0), frame_id=topic), height=2, width=2,
-                            encoding="mono8", is_bigendian=0, step=2, data=np.arange(4, dtype=np.uint8))
+            message = Image(header=Header(stamp=Time(sec=1, nanosec=0), frame_id=topic), height=16, width=16,
+                            encoding="mono8", is_bigendian=0, step=16, data=np.arange(256, dtype=np.uint8))
             writer.write(connection, 1, store.serialize_cdr(message, Image.__msgtype__))
     assert set(image_topics(tmp_path / "two")) == {"/left", "/right"}
     with pytest.raises(BagError, match="several image topics.*/left, /right"):
@@ -143,6 +143,14 @@ def test_truncated_bag(tmp_path: Path, storage: str) -> None:
     data = storage_file.read_bytes()
     storage_file.write_bytes(data[: len(data) // 2])
     with pytest.raises(BagError):
+        with open_image_stream(tmp_path / "bag") as stream:
+            for _ in stream:
+                pass
+
+
+def test_tiny_frames_are_refused(tmp_path: Path) -> None:
+    write_image_bag(tmp_path / "bag", _frames(count=3, height=64, width=8))
+    with pytest.raises(BagError, match=r"frame 0 of /camera/image_raw: image of size 8x64 is too small to track"):
         with open_image_stream(tmp_path / "bag") as stream:
             for _ in stream:
                 pass

@@ -206,6 +206,24 @@ def test_process_bag_sigint_leaves_valid_partial_outputs(venv_bin: Path, tmp_pat
         assert {c.topic: c.msgcount for c in reader.connections}["/trap/detections"] == summary["frames"]
 
 
+def test_process_bag_keeps_what_it_read_before_a_bad_frame_and_fails(venv_bin: Path, tmp_path: Path) -> None:
+    """A 4x4 frame after 40 good ones: those 40 are tracked and written, then one error line, exit 1."""
+    from trap_core.bagio import write_image_bag
+    from trap_core.synthetic.scene import render
+    frames = [rendered.rgb for rendered in render(SceneConfig(width=320, height=240, frames=40, seed=4))]
+    write_image_bag(tmp_path / "bag", [*frames, np.zeros((4, 4, 3), np.uint8)])
+    done = _process_bag(venv_bin / "process_bag", tmp_path / "bag", tmp_path / "out", "--ros-args", "-p",
+                        "segmentation:=colour")
+    assert done.returncode == 1
+    last = done.stderr.strip().splitlines()[-1]
+    assert last.startswith("process_bag: error:") and "frame 40" in last and "too small to track" in last
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["frames"] == 40
+    from rosbags.highlevel import AnyReader
+    with AnyReader([tmp_path / "out" / "tracks.mcap"]) as reader:
+        assert {c.topic: c.msgcount for c in reader.connections}["/trap/detections"] == 40
+
+
 def test_process_bag_with_nothing_to_track_writes_every_output(venv_bin: Path, tmp_path: Path) -> None:
     """Frames too small for any pattern to move: 0 tracks is a result, not an error."""
     bag, _ = write_synthetic(SceneConfig(width=96, height=72, frames=120), tmp_path / "tiny")

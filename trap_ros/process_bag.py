@@ -77,6 +77,16 @@ def checked_parameters(ros_args: list[str], objects: int | None) -> TrapParams:
         raise UsageError(str(error)) from None
 
 
+def _await_tracking(mining: MiningNode, interrupt: threading.Event, seconds: float = 60.0) -> None:
+    """Wait for the mining node to track the frames announced; after ``seconds``, or at once on a
+    (further) Ctrl-C, it tracks over what has arrived."""
+    deadline = time.monotonic() + seconds
+    while not mining.done.wait(timeout=0.2):
+        if interrupt.is_set() or time.monotonic() > deadline:
+            mining.finish()
+            break
+
+
 def _main() -> int:
     argv = sys.argv[1:]
     split = argv.index("--ros-args") if "--ros-args" in argv else len(argv)
@@ -116,21 +126,19 @@ def _main() -> int:
         reader.start()
         while not mining.done.wait(timeout=0.2) and not interrupt.is_set():
             if reader.error and reader.finished.is_set():
+                # The reader stopped on a bad frame and announced what it published before it:
+                # those frames are tracked and written as at a normal end, then the error is raised.
+                _await_tracking(mining, interrupt)
                 break
             if mining.received > meter.done:
                 meter.advance(mining.received - meter.done)
         if interrupt.is_set() and not mining.done.is_set():
             # Stop reading; the reader announces what it published, the frames in flight are
-            # segmented and mined, and the mining node tracks over all of them as at a normal end
-            # (within a minute; a second Ctrl-C tracks at once over what has arrived).
+            # segmented and mined, and the mining node tracks over all of them as at a normal end.
             interrupted = True
             interrupt.clear()
             reader.stop()
-            deadline = time.monotonic() + 60
-            while not mining.done.wait(timeout=0.2):
-                if interrupt.is_set() or time.monotonic() > deadline:
-                    mining.finish()
-                    break
+            _await_tracking(mining, interrupt)
         meter.advance(mining.received - meter.done)
         meter.finish()
         executor.shutdown(timeout_sec=5)
@@ -149,6 +157,8 @@ def _main() -> int:
               f"results in {args.out}: tracks.mcap, tracks.txt, summary.json, tracks.png, timeline.png")
         if mining.error:
             raise UsageError(mining.error)
+        if reader.error:  # the frames read before it are tracked and written above
+            raise UsageError(reader.error)
         return 130 if interrupted else 0
     finally:
         for node in nodes:

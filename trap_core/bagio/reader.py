@@ -19,6 +19,7 @@ from trap_core.bagio.decode import decode_compressed, decode_image
 from trap_core.bagio.errors import BagError
 
 IMAGE_TYPES = ("sensor_msgs/msg/Image", "sensor_msgs/msg/CompressedImage")
+MIN_SIDE = 16  # px: below, a frame holds too few regions of a useful size to form the faces patterns are made of
 
 
 @dataclass(frozen=True)
@@ -115,9 +116,14 @@ class ImageStream:
     def _decode(self, message: object, index: int) -> np.ndarray:
         try:
             if self.msgtype.endswith("CompressedImage"):
-                return decode_compressed(message.format, message.data)
-            return decode_image(message.encoding, message.height, message.width, message.step,
-                                message.data, bool(message.is_bigendian))
+                rgb = decode_compressed(message.format, message.data)
+            else:
+                rgb = decode_image(message.encoding, message.height, message.width, message.step,
+                                   message.data, bool(message.is_bigendian))
+            if min(rgb.shape[:2]) < MIN_SIDE:
+                raise BagError(f"image of size {rgb.shape[1]}x{rgb.shape[0]} is too small to track "
+                               f"(at least {MIN_SIDE} px a side)")
+            return rgb
         except BagError as error:
             raise BagError(f"{self.path}: frame {index} of {self.topic}: {error}") from None
 

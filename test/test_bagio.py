@@ -156,6 +156,20 @@ def test_tiny_frames_are_refused(tmp_path: Path) -> None:
                 pass
 
 
+def test_run_bag_tracks_and_writes_the_frames_before_a_bad_one(tmp_path: Path) -> None:
+    import json
+
+    from trap_core.pipeline import TrapParams, run_bag
+    from trap_core.synthetic import SceneConfig
+    from trap_core.synthetic.scene import render
+    frames = [rendered.rgb for rendered in render(SceneConfig(width=320, height=240, frames=40, seed=4))]
+    write_image_bag(tmp_path / "bag", [*frames, np.zeros((4, 4, 3), np.uint8)])
+    with pytest.raises(BagError, match="frame 40 of /camera/image_raw: image of size 4x4 is too small"):
+        run_bag(tmp_path / "bag", tmp_path / "out", TrapParams(segmentation="colour"))
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["frames"] == 40 and summary["counts"]["tracks"] >= 1  # every frame in flight was kept
+
+
 def test_corrupt_ros1_header(tmp_path: Path) -> None:
     write_image_bag(tmp_path / "bag.bag", _frames(count=10, height=64, width=64), storage="ros1")
     path = tmp_path / "bag.bag"

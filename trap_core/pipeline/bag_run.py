@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from trap_core.bagio import open_image_stream
+from trap_core.bagio import BagError, open_image_stream
 from trap_core.outputs import Thumbnails, contact_sheet, track_timeline, write_tracks_mot
 from trap_core.pipeline.chunks import ChunkedRun, ChunkedTracker
 from trap_core.pipeline.frames_to_graphs import graphs_of
@@ -43,13 +43,15 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
     """Read ``bag``, track, and write ``out/tracks.txt``, ``summary.json`` and ``tracks.png``.
 
     On KeyboardInterrupt the frames read so far are tracked and written, and the summary
-    says the run was interrupted; the interrupt is then re-raised.
+    says the run was interrupted; the interrupt is then re-raised. A bad frame (BagError) ends
+    the reading there: the frames before it are tracked and written, then the error is raised.
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     stamps: list[int] = []
     regions = 0
     interrupted = False
+    bad_frame: BagError | None = None
     with open_image_stream(bag, topic) as stream:
         meter = Progress(stream.count, f"segmenting {stream.topic}")
         thumbnails = Thumbnails(stream.count)
@@ -61,6 +63,8 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
                 regions += graph.n_nodes
         except KeyboardInterrupt:
             interrupted = True
+        except BagError as error:
+            bad_frame = error
         meter.finish()
         elapsed = time.perf_counter() - start
         chosen_topic = stream.topic
@@ -72,6 +76,8 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
     write_outputs(run, bag, out, params, thumbnails.images, thumbnails.scale)
     if interrupted:
         raise KeyboardInterrupt
+    if bad_frame is not None:
+        raise bad_frame
     return run
 
 

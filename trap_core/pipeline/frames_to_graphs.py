@@ -58,15 +58,27 @@ def _in_frame_pixels(graph: PlaneGraph, scale_x: float, scale_y: float) -> Plane
 
 
 def graphs_of(frames: Iterable[np.ndarray], params: TrapParams) -> Iterator[PlaneGraph]:
-    """Plane graph of each frame, in order."""
+    """Plane graph of each frame, in order. If ``frames`` fails (a bad frame in a bag), the
+    graphs of the frames before it are still given, then the error is raised."""
+    failure: Exception | None = None
     with ThreadPoolExecutor(params.threads, thread_name_prefix="trap-graph") as pool:
         pending: deque[Future] = deque()
-        for rgb in frames:
+        source = iter(frames)
+        while True:
+            try:
+                rgb = next(source)
+            except StopIteration:
+                break
+            except Exception as error:  # raised once the frames in flight are made
+                failure = error
+                break
             pending.append(pool.submit(frame_graph, rgb, params))
             if len(pending) >= 2 * params.threads:
                 yield pending.popleft().result()
         while pending:
             yield pending.popleft().result()
+    if failure is not None:
+        raise failure
 
 
 def synthetic_graphs(config: SceneConfig, params: TrapParams) -> tuple[list[PlaneGraph], list[dict[int, tuple]]]:

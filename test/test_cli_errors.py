@@ -32,6 +32,13 @@ def test_process_bag_wrong_topic(venv_bin: Path, tmp_path: Path, small_bag: Path
     _assert_one_line_error(done, "no image topic '/nope'")
 
 
+@pytest.mark.parametrize("command", ["process_bag", "evaluate"])
+def test_out_is_a_file(venv_bin: Path, tmp_path: Path, small_bag: Path, command: str) -> None:
+    (tmp_path / "results").write_text("")
+    done = _run(venv_bin, command, str(small_bag), "--out", str(tmp_path / "results"), cwd=tmp_path)
+    _assert_one_line_error(done, "is a file: give a folder")
+
+
 @pytest.mark.parametrize("args,pattern", [(["--width", "8"], "too small"), (["--frames", "0"], "frames >= 1")])
 def test_make_synthetic_absurd_parameters(venv_bin: Path, tmp_path: Path, args: list[str], pattern: str) -> None:
     _assert_one_line_error(_run(venv_bin, "make_synthetic", str(tmp_path / "b"), *args, cwd=tmp_path), pattern)

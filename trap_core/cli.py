@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import sys
 from collections.abc import Callable
+from pathlib import Path
 
 import yaml
 
@@ -22,6 +23,14 @@ def parameter_assignment(item: str) -> tuple[str, object]:
     if not sep:
         raise UsageError(f"-p takes name:=value, not {item!r}")
     return name, yaml.safe_load(text)
+
+
+def results_folder(path: Path) -> Path:
+    """``--out``: made if missing; a file there is refused in one line, not as ``[Errno 17]``."""
+    if path.exists() and not path.is_dir():
+        raise UsageError(f"--out {path} is a file: give a folder for the results")
+    path.mkdir(parents=True, exist_ok=True)
+    return path
 
 
 def run_main(main: Callable[[], int | None], name: str) -> int:

@@ -24,7 +24,7 @@ from rclpy.executors import MultiThreadedExecutor
 from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
 
-from trap_core.cli import UsageError, parameter_assignment, run_main
+from trap_core.cli import UsageError, parameter_assignment, results_folder, run_main
 from trap_core.outputs import Thumbnails
 from trap_core.pipeline import GRAPH_STAGE, BagRun, ParameterError, TrapParams
 from trap_core.pipeline.bag_run import write_outputs
@@ -93,9 +93,9 @@ def _main() -> int:
     args = build_parser().parse_args(argv[:split])
     ros_args = argv[split + 1:]
     checked_parameters(ros_args, args.objects)  # refuse bad parameters before any node starts
+    results_folder(args.out)
     if (args.out / "tracks.mcap").exists():
         shutil.rmtree(args.out / "tracks.mcap")
-    args.out.mkdir(parents=True, exist_ok=True)
     # SIGINT is ours: the nodes must stay usable to finish on the frames read so far. The handler
     # only sets a flag the main loop polls: a KeyboardInterrupt raised wherever the main thread is
     # (a finaliser run by the garbage collector swallows it) could be lost, and Ctrl-C with it.

@@ -16,7 +16,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from trap_core.bagio import open_image_stream  # noqa: E402
-from trap_core.cli import UsageError, parameter_assignment, run_main  # noqa: E402
+from trap_core.cli import UsageError, parameter_assignment, results_folder, run_main  # noqa: E402
 from trap_core.evaluation.baselines import TRACKERS, run_baselines  # noqa: E402
 from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores, level_curves  # noqa: E402
 from trap_core.evaluation.paper_measures import box_precision_recall, cluster_precision_recall  # noqa: E402
@@ -204,7 +204,7 @@ def _main() -> int:
     if unknown:
         raise UsageError(f"unknown baseline(s) {', '.join(unknown)} (known: {', '.join(TRACKERS)})")
     base = TrapParams.from_mapping(dict(parameter_assignment(item) for item in args.overrides))
-    args.out.mkdir(parents=True, exist_ok=True)
+    results_folder(args.out)
     results = []
     for bag in args.bags:
         gt = ground_truth_path(bag)

@@ -9,7 +9,7 @@ from rclpy.serialization import serialize_message
 from rosbags.rosbag2 import CompressionFormat, CompressionMode, StoragePlugin, Writer
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
-from trap_core.bagio import BagError
+from trap_core.bagio import BagError, stamp_ns
 
 VISION_TYPES = ("Point2D", "Pose2D", "BoundingBox2D", "ObjectHypothesis", "ObjectHypothesisWithPose",
                 "Detection2D", "Detection2DArray")
@@ -52,6 +52,5 @@ def write_results_bag(path: str | Path, published: dict[str, list], namespace: s
             connection = writer.add_connection(f"{namespace}/{name}", msgtype, typestore=store)
             for message in published.get(name, []):
                 header = message.header if hasattr(message, "header") else message.markers[0].header
-                stamp = header.stamp.sec * 1_000_000_000 + header.stamp.nanosec
-                writer.write(connection, stamp, serialize_message(message))
+                writer.write(connection, stamp_ns(header), serialize_message(message))
     return path

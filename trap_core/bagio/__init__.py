@@ -3,7 +3,7 @@
 from trap_core.bagio.decode import SUPPORTED_ENCODINGS, decode_compressed, decode_image
 from trap_core.bagio.encode import compress_image, encode_image
 from trap_core.bagio.errors import BagError
-from trap_core.bagio.reader import ImageFrame, ImageStream, image_topics, open_image_stream
+from trap_core.bagio.reader import ImageFrame, ImageStream, image_topics, open_image_stream, stamp_ns
 from trap_core.bagio.writer import STORAGES, write_image_bag
 
 __all__ = [
@@ -18,5 +18,6 @@ __all__ = [
     "encode_image",
     "image_topics",
     "open_image_stream",
+    "stamp_ns",
     "write_image_bag",
 ]

@@ -110,7 +110,7 @@ class ImageStream:
                 return
             except Exception as error:  # a truncated or corrupt chunk surfaces here
                 raise BagError(f"{self.path}: cannot read frame {index} of {self.topic}: {_reason(error)}") from None
-            yield ImageFrame(index, _stamp_ns(message), message.header.frame_id, self._decode(message, index))
+            yield ImageFrame(index, stamp_ns(message.header), message.header.frame_id, self._decode(message, index))
             index += 1
 
     def _decode(self, message: object, index: int) -> np.ndarray:
@@ -140,9 +140,9 @@ class ImageStream:
         self.close()
 
 
-def _stamp_ns(message: object) -> int:
-    stamp = message.header.stamp
-    return int(stamp.sec) * 1_000_000_000 + int(stamp.nanosec)
+def stamp_ns(header: object) -> int:
+    """Nanoseconds of a ``std_msgs/Header``'s stamp (rosbags' or rclpy's message)."""
+    return int(header.stamp.sec) * 1_000_000_000 + int(header.stamp.nanosec)
 
 
 def open_image_stream(path: str | Path, topic: str | None = None) -> ImageStream:

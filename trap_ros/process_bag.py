@@ -142,8 +142,6 @@ def _main() -> int:
         meter.advance(mining.received - meter.done)
         meter.finish()
         executor.shutdown(timeout_sec=5)
-        if reader.error and not mining.done.is_set():
-            raise UsageError(reader.error)
         seconds = {"total": time.perf_counter() - start, **(mining.result.seconds if mining.result else {})}
         run = BagRun(reader.stream.topic, mining.received, mining.regions / max(mining.received, 1), mining.result,
                      seconds, {}, interrupted)

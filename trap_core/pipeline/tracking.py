@@ -99,11 +99,11 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     all_labels[clustered] = labels
     tracks = [build_track(mined, all_labels, cluster, track_id, graphs, params.core_share if robust else 0.0)
               for track_id, cluster in enumerate(selected, start=1)]
+    lag = max(1, params.tau // 5)  # frames either side where a region is looked for again
     if robust and params.still_regions and params.core_share > 0:
-        lag = max(1, params.tau // 5)
         tracks = [drop_still_regions(t, mined, all_labels, graphs, transforms, params.core_share, lag) for t in tracks]
     if robust and params.grow:
-        tracks = [grow_boxes(t, graphs, transforms, lag=max(1, params.tau // 5)) for t in tracks]
+        tracks = [grow_boxes(t, graphs, transforms, lag=lag) for t in tracks]
     if robust and params.fill_gaps:
         tracks = [fill_gaps(t, params.tau) for t in tracks]
     if robust and params.one_track:

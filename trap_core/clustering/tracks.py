@@ -92,19 +92,17 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     np.minimum.at(y0, inverse, boxes[:, 1])
     np.maximum.at(x1, inverse, boxes[:, 2])
     np.maximum.at(y1, inverse, boxes[:, 3])
+    around = np.column_stack([x0, y0, x1 - x0 + 1, y1 - y0 + 1])
     if graphs is not None and core_share > 0:
         for slot, (frame, face_sets) in enumerate(frame_face_sets(result, patterns)):
-            core, _ = core_regions(graphs[frame], face_sets, core_share)
-            parts = graphs[frame].bbox[core]
-            x0[slot], y0[slot] = parts[:, 0].min(), parts[:, 1].min()
-            x1[slot], y1[slot] = parts[:, 2].max(), parts[:, 3].max()
+            around[slot] = graphs[frame].nodes_box(core_regions(graphs[frame], face_sets, core_share)[0])
     seen = np.unique(np.column_stack([inverse, owner]), axis=0)[:, 0]
     per_frame = np.bincount(seen, minlength=known.size).astype(float)
     score = per_frame / per_frame.max() if per_frame.size else per_frame
     occurrences = np.bincount(inverse, minlength=known.size)[:, None]
     points = np.column_stack([np.bincount(inverse, weights=result.occ_position[rows, axis], minlength=known.size)
                               for axis in (0, 1)]) / np.maximum(occurrences, 1)
-    return Track(track_id, known, np.column_stack([x0, y0, x1 - x0 + 1, y1 - y0 + 1]), score, cluster, points)
+    return Track(track_id, known, around, score, cluster, points)
 
 
 def frame_face_sets(result: MiningResult, patterns: np.ndarray) -> Iterator[tuple[int, np.ndarray]]:

@@ -46,6 +46,12 @@ class PlaneGraph:
         """(width, height) of the frame: its regions tile it."""
         return float(self.bbox[:, 2].max() + 1), float(self.bbox[:, 3].max() + 1)
 
+    def nodes_box(self, nodes: np.ndarray) -> np.ndarray:
+        """(x, y, w, h) of the box around the pixels of regions ``nodes`` (their ``bbox`` is inclusive)."""
+        parts = self.bbox[nodes]
+        x0, y0 = parts[:, 0].min(), parts[:, 1].min()
+        return np.array([x0, y0, parts[:, 2].max() - x0 + 1, parts[:, 3].max() - y0 + 1], dtype=float)
+
     @property
     def n_faces(self) -> int:
         return self.face_offsets.size - 1

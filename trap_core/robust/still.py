@@ -64,9 +64,7 @@ def drop_still_regions(track: Track, result: MiningResult, pattern_labels: np.nd
             continue
         still = _standing_still(graphs, transforms, track.points, slot, frame, others, lag)
         if still.any():
-            parts = graphs[frame].bbox[np.r_[anchor, others[~still]]]
-            x0, y0 = parts[:, 0].min(), parts[:, 1].min()
-            boxes[i] = (x0, y0, parts[:, 2].max() - x0 + 1, parts[:, 3].max() - y0 + 1)
+            boxes[i] = graphs[frame].nodes_box(np.r_[anchor, others[~still]])
     return dataclasses.replace(track, boxes=boxes)
 
 

@@ -361,6 +361,30 @@ def test_boxes_grow_over_the_parts_that_move_with_the_track_only() -> None:
                                [60, 40, 20, 20])  # a track that does not move with the parts takes none
 
 
+def test_a_sparse_track_grows_against_its_box_interpolated_through_short_gaps() -> None:
+    """Patterns seen every third frame only: no frame has a box of its own lag frames away."""
+    from trap_core.clustering import Track
+    from trap_core.robust import grow_boxes
+    params = TrapParams(segmentation="colour")
+    graphs = []
+    for t in range(13):
+        rgb = np.zeros((120, 200, 3), np.uint8)
+        rgb[:, :] = (40, 40, 40)
+        x = 60 + 3 * t
+        rgb[40:60, x:x + 20] = (0, 200, 0)
+        rgb[40:60, x + 20:x + 45] = (200, 0, 0)
+        graphs.append(frame_graph(rgb, params))
+    seen = np.arange(0, 13, 3)
+    parts = np.column_stack([60 + 3 * seen, np.full(5, 40), np.full(5, 20), np.full(5, 20)]).astype(float)
+    core = Track(1, seen, parts, np.ones(5), 1)
+    still = np.tile(np.eye(3), (13, 1, 1))
+    np.testing.assert_allclose(grow_boxes(core, graphs, still, lag=5).boxes, core.boxes)
+    grown = grow_boxes(core, graphs, still, lag=5, max_gap=2)
+    np.testing.assert_array_equal(grown.frames, seen)  # the gaps stay gaps
+    np.testing.assert_allclose(grown.boxes[:, 2], 45)
+    np.testing.assert_allclose(grow_boxes(core, graphs, still, lag=5, max_gap=1).boxes, core.boxes)
+
+
 def test_a_still_region_the_object_crosses_leaves_its_box_and_its_parts_stay() -> None:
     """Most faces on the object's edge hold the block it crosses: the core box becomes the block."""
     from trap_core.clustering import build_track

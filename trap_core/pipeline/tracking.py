@@ -103,7 +103,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     if robust and params.still_regions and params.core_share > 0:
         tracks = [drop_still_regions(t, mined, all_labels, graphs, transforms, params.core_share, lag) for t in tracks]
     if robust and params.grow:
-        tracks = [grow_boxes(t, graphs, transforms, lag=lag) for t in tracks]
+        tracks = [grow_boxes(t, graphs, transforms, lag=lag, max_gap=2 * lag) for t in tracks]
     if robust and params.fill_gaps:
         tracks = [fill_gaps(t, params.tau) for t in tracks]
     if robust and params.one_track:

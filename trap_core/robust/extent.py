@@ -8,7 +8,10 @@ the track's displacement brings it onto a region of the same label and about the
 (within 25 %: a background region the object passes over changes area as it is hidden), within
 ``tolerance`` times the square root of its area, and the camera's motion does not bring it
 anywhere nearly as close (background regions move with the camera). Either direction suffices:
-noisy regions are often found again on one side only.
+noisy regions are often found again on one side only. A noisy object's patterns are also
+missed for a few frames here and there, so the track's displacement is measured against its box
+interpolated through short gaps (:func:`fill_gaps`) where it has none of its own in that frame:
+else a sparse track's boxes never grow and stay on the one part its patterns hold.
 """
 from __future__ import annotations
 
@@ -20,12 +23,13 @@ import numpy as np
 from trap_core.clustering import Track
 from trap_core.rag import PlaneGraph
 from trap_core.robust._kernels import moving_regions
+from trap_core.robust.gaps import fill_gaps
 
 MAX_AREA = 4.0  # regions larger than this times the box are background, whatever their motion
 
 
 def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarray, lag: int = 5,
-               reach: float = 0.5, tolerance: float = 0.3) -> Track:
+               reach: float = 0.5, tolerance: float = 0.3, max_gap: int = 0) -> Track:
     """The track with each box grown over the nearby regions that move with it.
 
     Parameters
@@ -44,15 +48,19 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
         A region is found again if a region of the same label and area within 25 % lies
         within ``tolerance`` times the square root of its area (plus 1 px) of where a motion
         puts it.
+    max_gap : int
+        Where the track has no box ``lag`` frames away, its box interpolated through a gap
+        of at most this many frames stands in. Only frames with a box of their own grow.
 
     Returns
     -------
     Track
     """
+    reference = fill_gaps(track, max_gap)  # motions are measured between the boxes as built, not as grown
     slot = np.full(len(graphs), -1)
-    slot[track.frames] = np.arange(len(track))
-    core = track.boxes.astype(float)  # motions are measured between the boxes as built, not as grown
-    boxes = core.copy()
+    slot[reference.frames] = np.arange(len(reference))
+    core = reference.boxes.astype(float)
+    boxes = track.boxes.astype(float)
     for i, frame in enumerate(track.frames.tolist()):
         here, from_here = graphs[frame], np.linalg.inv(transforms[frame])
         moving = None
@@ -62,7 +70,7 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
                 continue
             there = graphs[other]
             found = moving_regions(here.bbox, here.centroid, here.area, here.label, there.centroid, there.area,
-                                   there.label, core[i], core[j],
+                                   there.label, core[slot[frame]], core[j],
                                    transforms[other] @ from_here, reach, tolerance, MAX_AREA)
             moving = found if moving is None else moving | found
         if moving is not None and moving.any():

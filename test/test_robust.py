@@ -147,6 +147,26 @@ def test_rejoin_follows_the_way_an_object_went() -> None:
     assert labels[0] == labels[2] != labels[1]
 
 
+def test_rejoin_predicts_an_object_still_in_the_world_when_the_camera_stops() -> None:
+    """The camera pans 4 px a frame until frame 30, then stands; an object still in the world
+    slides left in the view while it pans, is hidden from frame 30 to 59, and is seen again at
+    x=180 where the camera left it. Its motion in the view predicts x=60, where a look-alike is."""
+    transforms = np.tile(np.eye(3), (100, 1, 1))
+    transforms[:, 0, 2] = -4.0 * np.minimum(np.arange(100), 30)
+    still = lambda x, n: np.column_stack([np.full(n, x), np.full(n, 50.0)])  # noqa: E731
+    paths = _paths([(0, np.column_stack([300 - 4.0 * np.arange(30), np.full(30, 50.0)])),
+                    (60, still(180.0, 40)),   # the object, seen again
+                    (60, still(60.0, 40))])   # a look-alike where its motion in the view ends
+    pattern = np.array([5, 5, 5])
+    in_view = rejoin_fragments(np.array([0, 1, 2]), paths, pattern, 100, max_overlap=0)
+    assert in_view[0] == in_view[2] != in_view[1]
+    with_camera = rejoin_fragments(np.array([0, 1, 2]), paths, pattern, 100, max_overlap=0, transforms=transforms)
+    assert with_camera[0] == with_camera[1] != with_camera[2]
+    followed = rejoin_fragments(np.array([0, 1, 2]), paths, pattern, 100, max_overlap=0,
+                                transforms=np.tile(np.eye(3), (100, 1, 1)))
+    np.testing.assert_array_equal(followed, in_view)  # a still camera: motion in the view and in the world agree
+
+
 def test_a_fragment_leaves_at_the_border_if_one_of_its_last_patterns_does() -> None:
     """An object's patterns do not all vanish on the same frame: the one that reached the border
     decides, if it ended within ``max_overlap`` frames of the fragment's end."""

@@ -7,9 +7,10 @@ not overlap in time (at most ``max_overlap`` shared frames), are made of the sam
 (for one of them, the share of its occurrences whose plane patterns the other also has is at
 least ``min_similarity``: a short fragment may show only some of the object's structures, and
 the ones an object shows all along count more than those seen for a moment), and,
-among all such pairs, the later one starts closest to where the earlier one's motion predicts; pairs are
-joined greedily, closest first, and a joined cluster can no longer take a fragment that
-overlaps it, which keeps look-alike objects apart. With the fragments' border contacts, a
+among all such pairs, the later one starts closest to where the earlier one's motion predicts
+(steady in the view or, with the camera's motion, in the world); pairs are joined greedily,
+closest first, and a joined cluster can no longer take a fragment that overlaps it, which
+keeps look-alike objects apart. With the fragments' border contacts, a
 fragment that left the view (its last box at the image border) continues only one that
 enters it (first box at the border), and one that vanished inside the view (occluded)
 only one that appears inside it: an object comes back the way it went.
@@ -25,7 +26,7 @@ from trap_core.mining import MiningResult
 def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.ndarray, n_frames: int,
                      min_similarity: float = 0.3, max_overlap: int = 25,
                      at_border: tuple[np.ndarray, np.ndarray] | None = None,
-                     weights: np.ndarray | None = None) -> np.ndarray:
+                     weights: np.ndarray | None = None, transforms: np.ndarray | None = None) -> np.ndarray:
     """Cluster labels (0..C'-1) after joining fragments of the same object.
 
     Candidate pairs and their costs are computed once on the fragments; they are then taken
@@ -33,7 +34,9 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     earlier joins) still share at most ``max_overlap`` frames. ``at_border``: per pattern,
     whether it starts and whether it ends at the image border (:func:`border_contacts`).
     ``weights``: per pattern, how much of its fragment it is (its occurrences); by default
-    every pattern counts one.
+    every pattern counts one. ``transforms``: the camera's motion (``transforms[t]`` maps
+    frame-0 coordinates to frame ``t``); with it, a fragment may also continue where the
+    earlier one's motion in the world puts it (:func:`_prediction_error`).
     """
     labels = np.unique(labels, return_inverse=True)[1]
     summary = summarise(labels, paths, np.ones(labels.size), n_frames)
@@ -53,7 +56,7 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
         leaves = _flag_near(labels, paths.end, summary.paths.end, at_border[1], max_overlap)
         candidate &= leaves[:, None] == enters[None, :]
     earlier, later = np.nonzero(candidate)
-    costs = np.array([_prediction_error(summary.paths, a, b) for a, b in zip(earlier, later)])
+    costs = np.array([_prediction_error(summary.paths, a, b, transforms) for a, b in zip(earlier, later)])
     group = np.arange(n_clusters)
     group_covered = summary.covered.copy()
     for pair in np.argsort(costs, kind="stable"):
@@ -65,14 +68,34 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     return np.unique(group[labels], return_inverse=True)[1]
 
 
-def _prediction_error(paths: Trajectories, earlier: int, later: int) -> float:
-    """Distance between where ``later`` starts and where ``earlier``'s last motion would put it."""
+def _prediction_error(paths: Trajectories, earlier: int, later: int, transforms: np.ndarray | None = None) -> float:
+    """Distance between where ``later`` starts and where ``earlier``'s last motion would put it.
+
+    Two motions are extrapolated across the gap: steady in the view, and, with the camera's
+    ``transforms``, steady in the world (mapped back into the view with the camera's motion).
+    Under a panning camera the two part by the camera's motion times the gap. Which one holds
+    depends on the shot: a camera that follows the object keeps it steady in the view, a
+    camera that sweeps past it leaves it steady in the world; the error is the smaller one.
+    """
     before = paths.of(earlier)
     tail = before[-min(len(before), 10):]
-    velocity = (tail[-1] - tail[0]) / max(len(tail) - 1, 1)
     gap = paths.start[later] - paths.end[earlier]
-    predicted = before[-1] + velocity * gap
-    return float(np.linalg.norm(paths.of(later)[0] - predicted))
+    arrival = paths.of(later)[0]
+    in_view = before[-1] + (tail[-1] - tail[0]) / max(len(tail) - 1, 1) * gap
+    error = float(np.linalg.norm(arrival - in_view))
+    if transforms is None:
+        return error
+    frames = np.arange(paths.end[earlier] - len(tail) + 1, paths.end[earlier] + 1)
+    world = _apply(np.linalg.inv(transforms[frames]), tail)
+    in_world = world[-1] + (world[-1] - world[0]) / max(len(tail) - 1, 1) * gap
+    seen = _apply(transforms[paths.start[later]][None], in_world[None])[0]
+    return min(error, float(np.linalg.norm(arrival - seen)))
+
+
+def _apply(homographies: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """(N, 2) ``points`` mapped each by its (N, 3, 3) homography."""
+    mapped = np.einsum("nij,nj->ni", homographies, np.column_stack([points, np.ones(len(points))]))
+    return mapped[:, :2] / mapped[:, 2:]
 
 
 def _flag_near(labels: np.ndarray, pattern_edge: np.ndarray, cluster_edge: np.ndarray, flags: np.ndarray,

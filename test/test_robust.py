@@ -300,6 +300,26 @@ def test_oversized_boxes_outside_groups_get_the_usual_size_on_the_path() -> None
                                boxes)
 
 
+def test_undersized_boxes_away_from_the_border_get_the_usual_size_around_them() -> None:
+    """Noisy regions: in some frames the track's box is one part of the object, or a strip of
+    region along its edge; at the border a shrinking box is the object cut by the view."""
+    from trap_core.robust import separate_groups
+    frames = np.arange(60)
+    boxes = np.column_stack([100 + 2.0 * frames, np.full(60, 200.0), np.full(60, 40.0), np.full(60, 30.0)])
+    seen = boxes.copy()
+    strip, part = (frames >= 20) & (frames < 30), (frames >= 40) & (frames < 45)
+    seen[strip] = boxes[strip] + [5.0, 27.0, 0.0, 0.0]
+    seen[strip, 2:] = [12.0, 3.0]
+    seen[part] = boxes[part] + [25.0, 5.0, 0.0, 0.0]
+    seen[part, 2:] = [15.0, 10.0]
+    fixed = separate_groups([_as_track(1, frames, seen)], 60, 640, 480, factor=1.5, window=50)[0].boxes
+    np.testing.assert_allclose(fixed, boxes)
+    leaving = np.column_stack([560 + 1.3 * frames, np.full(60, 200.0), np.full(60, 40.0), np.full(60, 30.0)])
+    leaving[:, 2] = np.minimum(40.0, 640 - leaving[:, 0])  # cut by the right border from frame 31, 3 px wide at last
+    kept = separate_groups([_as_track(1, frames, leaving)], 60, 640, 480, factor=1.5, window=50)[0].boxes
+    np.testing.assert_allclose(kept, leaving)
+
+
 _BASE = TrapParams(segmentation="colour", eps=20.0, tau=25)
 
 

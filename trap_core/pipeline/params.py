@@ -78,8 +78,9 @@ class TrapParams:
                                    "background the object crosses: it leaves the box (the region most occurrences "
                                    "hold stays)")
     size_jump: float = _p(1.5, "robust: a track box this many times wider or taller than its usual size (running "
-                               "median over 4 tau frames each side where it is alone) holds more than the object: it "
-                               "is given the usual size; 0 = off")
+                               "median over 4 tau frames each side where it is alone) holds more than the object, "
+                               "one this many times narrower or shorter (away from the border) a part of it: it is "
+                               "given the usual size; 0 = off")
     grow: bool = _p(True, "robust: track boxes grow over nearby regions that move with the track, tau/5 frames before "
                           "or after (objects the segmentation splits into parts)")
     fill_gaps: bool = _p(True, "robust: a track's box is interpolated through its gaps of at most tau frames "

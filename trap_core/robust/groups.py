@@ -20,7 +20,9 @@ tracks themselves know:
   two objects; dips shorter than ``patience`` frames do not end it). Such frames get half the
   track's lowest observed confidence;
 * **oversized** boxes outside groups (``factor`` times the usual size) get the usual size,
-  centred where the neighbouring normal frames put the object, inside the observed box.
+  centred where the neighbouring normal frames put the object, inside the observed box;
+  **undersized** ones (``factor`` times smaller: a part of the object) likewise, around the
+  observed box, unless the view may cut the object (within its usual size of the border).
 """
 from __future__ import annotations
 
@@ -39,7 +41,7 @@ HOLDS_MORE = 1.1  # a box this much wider or taller than its usual size holds mo
 def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height: float, factor: float = 1.5,
                     window: int = 100, border: float = 0.25, groups: bool = True,
                     patience: int = 25) -> list[Track]:
-    """Tracks with merged boxes split, oversized boxes shrunk and occluded objects followed.
+    """Tracks with merged boxes split, odd-sized boxes given the usual size and occluded objects followed.
 
     Parameters
     ----------
@@ -48,8 +50,8 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
     n_frames, width, height :
         Video length and frame size.
     factor : float
-        Outside groups, a box wider or taller than ``factor`` times the usual size is oversized;
-        0 = leave boxes outside groups alone.
+        Outside groups, a box wider or taller than ``factor`` times the usual size is oversized,
+        one ``factor`` times narrower or shorter undersized; 0 = leave boxes outside groups alone.
     window : int
         Frames on each side of the running median of the usual size.
     border : float
@@ -88,6 +90,7 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
         _split(placed, boxes, usual, centres, partner, slot)
         if factor > 0:
             _shrink_oversized(placed[slot], usual[slot], alone[slot], factor)
+            _grow_undersized(placed[slot], usual[slot], alone[slot], factor, width, height)
     out = []
     for slot, t in enumerate(tracks):
         frames = np.flatnonzero(~np.isnan(placed[slot, :, 0]))
@@ -219,9 +222,29 @@ def _shrink_oversized(placed: np.ndarray, usual: np.ndarray, alone: np.ndarray, 
     """Outside groups, boxes ``factor`` times their usual size get that size, centred on the path
     of the normal frames around them and kept inside the observed box (in place)."""
     present = ~np.isnan(placed[:, 0])
-    oversized = present & alone & np.any(placed[:, 2:4] > factor * usual, axis=1)
-    normal = np.flatnonzero(present & ~oversized)
-    odd = np.flatnonzero(oversized)
+    _to_usual_size(placed, usual, present & alone & np.any(placed[:, 2:4] > factor * usual, axis=1), inside=True)
+
+
+def _grow_undersized(placed: np.ndarray, usual: np.ndarray, alone: np.ndarray, factor: float, width: float,
+                     height: float) -> None:
+    """Outside groups, boxes ``factor`` times smaller than their usual size (a part of the
+    object: a thin strip of region along its edge, one of its parts) get that size, centred on
+    the path of the normal frames around them and holding the observed box (in place). Boxes
+    within their usual size of the image border are left alone: the view may cut the object."""
+    x, y, w, h = placed.T
+    cut = ((x < usual[:, 0]) | (y < usual[:, 1]) | (x + w > width - usual[:, 0])
+           | (y + h > height - usual[:, 1]))
+    present = ~np.isnan(x)
+    _to_usual_size(placed, usual, present & alone & ~cut & np.any(placed[:, 2:4] * factor < usual, axis=1),
+                   inside=False)
+
+
+def _to_usual_size(placed: np.ndarray, usual: np.ndarray, odd_frames: np.ndarray, inside: bool) -> None:
+    """Boxes of ``odd_frames`` at their usual size, centred on the path of the other frames and
+    kept inside the observed box (``inside``) or around it (in place)."""
+    present = ~np.isnan(placed[:, 0])
+    normal = np.flatnonzero(present & ~odd_frames)
+    odd = np.flatnonzero(odd_frames)
     if odd.size == 0 or normal.size == 0:
         return
     for axis in (0, 1):
@@ -230,5 +253,6 @@ def _shrink_oversized(placed: np.ndarray, usual: np.ndarray, alone: np.ndarray, 
         size = usual[odd, axis]
         start = placed[odd, axis]
         stop = start + placed[odd, 2 + axis] - size
-        placed[odd, axis] = np.clip(guess - size / 2, start, stop)
+        low, high = (start, stop) if inside else (np.minimum(stop, start), np.maximum(stop, start))
+        placed[odd, axis] = np.clip(guess - size / 2, low, high)
         placed[odd, 2 + axis] = size

@@ -401,6 +401,26 @@ def test_boxes_grow_over_the_parts_that_move_with_the_track_only() -> None:
                                [60, 40, 20, 20])  # a track that does not move with the parts takes none
 
 
+def test_a_box_on_a_small_part_grows_over_the_body_around_it() -> None:
+    """The track's patterns hold a small part inside the object's body; the body is many times
+    the part's box, but it encloses the box and moves with it."""
+    from trap_core.clustering import Track
+    from trap_core.robust import grow_boxes
+    params = TrapParams(segmentation="colour")
+    graphs = []
+    for t in range(11):
+        rgb = np.full((120, 200, 3), 40, np.uint8)
+        x = 40 + 3 * t
+        rgb[30:70, x:x + 60] = (0, 200, 0)
+        rgb[46:54, x + 25:x + 35] = (200, 0, 0)
+        graphs.append(frame_graph(rgb, params))
+    frames = np.arange(11)
+    part = np.column_stack([65 + 3 * frames, np.full(11, 46), np.full(11, 10), np.full(11, 8)]).astype(float)
+    grown = grow_boxes(Track(1, frames, part, np.ones(11), 1), graphs, np.tile(np.eye(3), (11, 1, 1)), lag=5)
+    np.testing.assert_allclose(grown.boxes, np.column_stack([40 + 3 * frames, np.full(11, 30), np.full(11, 60),
+                                                             np.full(11, 40)]))
+
+
 def test_a_sparse_track_grows_against_its_box_interpolated_through_short_gaps() -> None:
     """Patterns seen every third frame only: no frame has a box of its own lag frames away."""
     from trap_core.clustering import Track

@@ -16,14 +16,18 @@ def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
                    max_area: float) -> np.ndarray:
     """Mask of the regions near ``box`` that the track's displacement to the other frame puts on
     a look-alike region (same label, area within ``AREA_RATIO``, within ``tolerance`` sqrt(area) + 1
-    px) at least twice as close as the camera's motion ``camera`` (3x3) does."""
+    px) at least twice as close as the camera's motion ``camera`` (3x3) does. Regions over
+    ``max_area`` times the box are left out unless their box encloses it."""
     x, y, w, h = box[0], box[1], box[2], box[3]
     shift_x = other_box[0] + other_box[2] / 2 - (x + w / 2)
     shift_y = other_box[1] + other_box[3] / 2 - (y + h / 2)
     found = np.zeros(bbox.shape[0], dtype=np.bool_)
     for i in range(bbox.shape[0]):
         if (bbox[i, 2] < x - reach * w or bbox[i, 3] < y - reach * h or bbox[i, 0] > x + w + reach * w
-                or bbox[i, 1] > y + h + reach * h or area[i] > max_area * w * h):
+                or bbox[i, 1] > y + h + reach * h):
+            continue
+        encloses = bbox[i, 0] <= x and bbox[i, 1] <= y and bbox[i, 2] >= x + w - 1 and bbox[i, 3] >= y + h - 1
+        if area[i] > max_area * w * h and not encloses:
             continue
         cx, cy = centroid[i, 0], centroid[i, 1]
         mx, my = cx + shift_x, cy + shift_y

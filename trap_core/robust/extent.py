@@ -25,7 +25,9 @@ from trap_core.rag import PlaneGraph
 from trap_core.robust._kernels import moving_regions
 from trap_core.robust.gaps import fill_gaps
 
-MAX_AREA = 4.0  # regions larger than this times the box are background, whatever their motion
+# Regions larger than this times the box are background, whatever their motion, unless they
+# enclose the box: a box on a small part of the object is inside the body around that part.
+MAX_AREA = 4.0
 
 
 def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarray, lag: int = 5,

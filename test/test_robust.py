@@ -116,6 +116,18 @@ def test_rejoin_joins_same_structure_across_a_gap_but_not_overlapping_lookalikes
     assert np.unique(different).size == 3
 
 
+def test_rejoin_continues_a_fragment_right_where_another_ended_whatever_its_structures() -> None:
+    """Noise changed every structure the object shows at frame 30; the new fragment starts where
+    the old one's motion puts it. One 30 px off, or starting 10 frames later, is not adjacent."""
+    def line(start: int, n: int, dy: float = 0.0) -> np.ndarray:
+        return np.column_stack([2.0 * np.arange(start, start + n), np.full(n, 50.0 + dy)])
+    paths = _paths([(0, line(0, 30)), (31, line(31, 30)), (31, line(31, 30, 30.0)), (71, line(71, 9))])
+    pattern = np.array([5, 6, 7, 8])  # no structure in common
+    assert np.unique(rejoin_fragments(np.arange(4), paths, pattern, 80)).size == 4
+    labels = rejoin_fragments(np.arange(4), paths, pattern, 80, adjacent_gap=2, adjacent_reach=10.0)
+    assert labels[0] == labels[1] and np.unique(labels).size == 3
+
+
 def test_rejoin_weighs_structures_by_how_much_of_the_fragment_they_are() -> None:
     """Before the gap the object shows its main structure (5) for 50 frames and three others
     briefly; after it, the main one and four others: one shared structure in four, but most

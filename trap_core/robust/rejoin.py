@@ -26,7 +26,8 @@ from trap_core.mining import MiningResult
 def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.ndarray, n_frames: int,
                      min_similarity: float = 0.3, max_overlap: int = 25,
                      at_border: tuple[np.ndarray, np.ndarray] | None = None,
-                     weights: np.ndarray | None = None, transforms: np.ndarray | None = None) -> np.ndarray:
+                     weights: np.ndarray | None = None, transforms: np.ndarray | None = None,
+                     adjacent_gap: int = 0, adjacent_reach: float = 0.0) -> np.ndarray:
     """Cluster labels (0..C'-1) after joining fragments of the same object.
 
     Candidate pairs and their costs are computed once on the fragments; they are then taken
@@ -36,7 +37,10 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     ``weights``: per pattern, how much of its fragment it is (its occurrences); by default
     every pattern counts one. ``transforms``: the camera's motion (``transforms[t]`` maps
     frame-0 coordinates to frame ``t``); with it, a fragment may also continue where the
-    earlier one's motion in the world puts it (:func:`_prediction_error`).
+    earlier one's motion in the world puts it (:func:`_prediction_error`). A fragment that
+    starts at most ``adjacent_gap`` frames after another ends, at most ``adjacent_reach`` px
+    from where its motion puts it, is a candidate whatever its structures: an object does not
+    jump, but a noisy one can change every structure it shows from one frame to the next.
     """
     labels = np.unique(labels, return_inverse=True)[1]
     summary = summarise(labels, paths, np.ones(labels.size), n_frames)
@@ -50,13 +54,17 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     covered = summary.covered.astype(np.float32)
     overlap = covered @ covered.T
     start = summary.paths.start
-    candidate = (start[:, None] < start[None, :]) & (overlap <= max_overlap) & (similarity >= min_similarity)
+    timed = (start[:, None] < start[None, :]) & (overlap <= max_overlap)
+    adjacent = timed & (start[None, :] - summary.paths.end[:, None] <= adjacent_gap) & (adjacent_reach > 0)
+    candidate = timed & ((similarity >= min_similarity) | adjacent)
     if at_border is not None:
         enters = _flag_near(labels, paths.start, summary.paths.start, at_border[0], max_overlap)
         leaves = _flag_near(labels, paths.end, summary.paths.end, at_border[1], max_overlap)
         candidate &= leaves[:, None] == enters[None, :]
     earlier, later = np.nonzero(candidate)
     costs = np.array([_prediction_error(summary.paths, a, b, transforms) for a, b in zip(earlier, later)])
+    keep = (similarity[earlier, later] >= min_similarity) | (costs <= adjacent_reach)
+    earlier, later, costs = earlier[keep], later[keep], costs[keep]
     group = np.arange(n_clusters)
     group_covered = summary.covered.copy()
     for pair in np.argsort(costs, kind="stable"):

@@ -10,10 +10,11 @@ the ones an object shows all along count more than those seen for a moment), and
 among all such pairs, the later one starts closest to where the earlier one's motion predicts
 (steady in the view or, with the camera's motion, in the world); pairs are joined greedily,
 closest first, and a joined cluster can no longer take a fragment that overlaps it, which
-keeps look-alike objects apart. With the fragments' border contacts, a
-fragment that left the view (its last box at the image border) continues only one that
-enters it (first box at the border), and one that vanished inside the view (occluded)
-only one that appears inside it: an object comes back the way it went.
+keeps look-alike objects apart. A fragment that starts right where and when another ends
+is a candidate even without shared structures (noise can change them all at once). With the
+fragments' border contacts, a fragment that left the view (its last box at the image border)
+continues only one that enters it (first box at the border), and one that vanished inside
+the view (occluded) only one that appears inside it: an object comes back the way it went.
 """
 from __future__ import annotations
 

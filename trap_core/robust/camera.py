@@ -74,6 +74,13 @@ def _cell_medians(points: np.ndarray, cell: np.ndarray, n_cells: int) -> np.ndar
     return out
 
 
+def map_points(homographies: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """(N, 2) ``points`` mapped by one (3, 3) homography or each by its own ((N, 3, 3))."""
+    homographies = np.broadcast_to(homographies, (len(points), 3, 3))
+    mapped = np.einsum("nij,nj->ni", homographies, np.column_stack([points, np.ones(len(points))]))
+    return mapped[:, :2] / mapped[:, 2:]
+
+
 def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, lag: int = 1,
                 chunk: int = 1 << 20) -> np.ndarray:
     """(S,) speed of each pattern in world coordinates, pixels per frame (0 if seen once).

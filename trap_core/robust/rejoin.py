@@ -22,6 +22,7 @@ import numpy as np
 
 from trap_core.clustering import Trajectories, summarise
 from trap_core.mining import MiningResult
+from trap_core.robust.camera import map_points
 
 
 def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.ndarray, n_frames: int,
@@ -95,16 +96,10 @@ def _prediction_error(paths: Trajectories, earlier: int, later: int, transforms:
     if transforms is None:
         return error
     frames = np.arange(paths.end[earlier] - len(tail) + 1, paths.end[earlier] + 1)
-    world = _apply(np.linalg.inv(transforms[frames]), tail)
+    world = map_points(np.linalg.inv(transforms[frames]), tail)
     in_world = world[-1] + (world[-1] - world[0]) / max(len(tail) - 1, 1) * gap
-    seen = _apply(transforms[paths.start[later]][None], in_world[None])[0]
+    seen = map_points(transforms[paths.start[later]], in_world[None])[0]
     return min(error, float(np.linalg.norm(arrival - seen)))
-
-
-def _apply(homographies: np.ndarray, points: np.ndarray) -> np.ndarray:
-    """(N, 2) ``points`` mapped each by its (N, 3, 3) homography."""
-    mapped = np.einsum("nij,nj->ni", homographies, np.column_stack([points, np.ones(len(points))]))
-    return mapped[:, :2] / mapped[:, 2:]
 
 
 def _flag_near(labels: np.ndarray, pattern_edge: np.ndarray, cluster_edge: np.ndarray, flags: np.ndarray,

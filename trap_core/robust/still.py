@@ -25,6 +25,7 @@ import numpy as np
 from trap_core.clustering import Track, core_regions, frame_face_sets
 from trap_core.mining import MiningResult
 from trap_core.rag import PlaneGraph
+from trap_core.robust.camera import map_points
 
 AREA_FACTOR = 2.0  # a background region the object passes over loses or regains what it hides
 
@@ -54,13 +55,15 @@ def drop_still_regions(track: Track, result: MiningResult, pattern_labels: np.nd
     """
     slot = np.full(len(graphs), -1)
     slot[track.frames] = np.arange(len(track))
-    boxes = track.boxes.astype(float).copy()
+    boxes = track.boxes.astype(float)
     patterns = np.flatnonzero(pattern_labels == track.cluster)
     for frame, face_sets in frame_face_sets(result, patterns):
         i = slot[frame]
+        if i < 0:
+            continue
         core, anchor = core_regions(graphs[frame], face_sets, share)
         others = np.setdiff1d(core, anchor)
-        if i < 0 or others.size == 0:
+        if others.size == 0:
             continue
         still = _standing_still(graphs, transforms, track.points, slot, frame, others, lag)
         if still.any():
@@ -85,17 +88,15 @@ def _standing_still(graphs: Sequence[PlaneGraph], transforms: np.ndarray, points
             continue
         tested = True
         there = graphs[other]
-        camera = transforms[other] @ np.linalg.inv(transforms[frame])
+        moved = map_points(transforms[other] @ np.linalg.inv(transforms[frame]), here.centroid[regions])
         for k, region in enumerate(regions.tolist()):
             look_alike = ((there.label == here.label[region]) & (there.area < AREA_FACTOR * here.area[region])
                           & (AREA_FACTOR * there.area > here.area[region]))
             if not look_alike.any():
                 still[k] = False
                 continue
-            centroid = here.centroid[region]
-            moved = camera @ np.r_[centroid, 1.0]
             candidates = there.centroid[look_alike]
-            with_track = np.hypot(*(candidates - (centroid + shift)).T).min()
-            with_camera = np.hypot(*(candidates - moved[:2] / moved[2]).T).min()
+            with_track = np.hypot(*(candidates - (here.centroid[region] + shift)).T).min()
+            with_camera = np.hypot(*(candidates - moved[k]).T).min()
             still[k] &= 2 * with_camera < with_track
     return still & tested

@@ -9,6 +9,7 @@ import pytest
 from trap_core.bagio import open_image_stream
 from trap_core.motformat import read_mot
 from trap_core.synthetic import SceneConfig, build_world, render, write_synthetic
+from trap_core.synthetic.cli import build_parser
 
 
 def _colour_box(rgb: np.ndarray, colours: np.ndarray) -> tuple[int, int, int, int] | None:
@@ -30,6 +31,31 @@ def test_ground_truth_is_the_box_of_visible_pixels() -> None:
             assert box == _colour_box(frame.rgb, colours[obj]), f"frame {frame.index} object {obj}"
             checked += box is not None
     assert checked > 600
+
+
+@pytest.mark.parametrize("shape", ["person", "disc", "mixed"])
+def test_shapes_ground_truth_and_proportions(shape: str) -> None:
+    cfg = SceneConfig(width=320, height=240, frames=60, seed=5, shape=shape, objects=3, exits=False)
+    colours = build_world(cfg).object_colours
+    sizes = {obj: [] for obj in range(cfg.objects)}
+    for frame in render(cfg):
+        for obj, box in enumerate(frame.boxes):
+            assert box == _colour_box(frame.rgb, colours[obj]), f"frame {frame.index} object {obj}"
+            sizes[obj].append(box[2:])
+    aspect = {obj: float(np.median([h / w for w, h in boxes])) for obj, boxes in sizes.items()}
+    expected = {"person": 2.3, "disc": 1.0, "car": 0.67}  # height over width of the visible pixels
+    for obj in range(cfg.objects):
+        assert aspect[obj] == pytest.approx(expected[cfg.shape_of(obj)], rel=0.25), (obj, aspect)
+    if shape == "mixed":
+        assert [cfg.shape_of(obj) for obj in range(3)] == ["car", "person", "disc"]
+
+
+def test_unknown_shape_is_refused() -> None:
+    with pytest.raises(ValueError, match="shape"):
+        SceneConfig(shape="triangle")
+    with pytest.raises(SystemExit):
+        build_parser().parse_args(["clip", "--shape", "triangle"])
+    assert build_parser().parse_args(["clip", "--shape", "mixed"]).shape == "mixed"
 
 
 def test_same_seed_same_video_other_seed_other_video() -> None:

@@ -2,7 +2,8 @@
 
 A camera pans over a wide world of coloured Voronoi cells sprinkled with small islands (about
 240 regions a frame, mean adjacency degree near 3.9, as in the paper's Anim videos). Objects
-made of several coloured parts move in image space along piecewise-linear paths with abrupt
+made of several coloured parts (car-like boxes by default; tall "persons", round "discs", or a
+mix: ``SHAPES``) move in image space along piecewise-linear paths with abrupt
 turns, cross and occlude each other (fixed depth order); the last object leaves the field of
 view for 3-4 s several times. Everything is drawn with exact colours (no anti-aliasing), so the
 ground-truth box of an object is the box of its visible pixels, computed while drawing.
@@ -16,15 +17,26 @@ import cv2
 import numpy as np
 from scipy.spatial import Delaunay, cKDTree
 
-# Part layout of an object in unit box coordinates (x0, y0, x1, y1), drawn in order over the
-# body: two upper panels meeting in the middle (junctions with the body inside the object) and
-# two "wheels" on the lower edge (junctions with the background). Index = colour slot.
-PART_BOXES = (
-    ((0.0, 0.0, 1.0, 1.0),),                           # body
-    ((0.10, 0.15, 0.50, 0.58),),                       # left panel
-    ((0.50, 0.15, 0.90, 0.58),),                       # right panel
-    ((0.14, 0.74, 0.36, 1.0), (0.64, 0.74, 0.86, 1.0)),  # wheels
-)
+# Object shapes: parts drawn in order, each a colour slot (0 = body) and a rectangle or the
+# ellipse inscribed in it, in unit box coordinates (x0, y0, x1, y1); pixels no part covers show
+# the background. Every shape has junctions of parts inside the object and with the background.
+RECT, ELLIPSE = "rect", "ellipse"
+SHAPES = {
+    # two upper panels meeting in the middle, two "wheels" on the lower edge
+    "car": ((0, RECT, (0.0, 0.0, 1.0, 1.0)), (1, RECT, (0.10, 0.15, 0.50, 0.58)),
+            (2, RECT, (0.50, 0.15, 0.90, 0.58)), (3, RECT, (0.14, 0.74, 0.36, 1.0)),
+            (3, RECT, (0.64, 0.74, 0.86, 1.0))),
+    # tall and thin, not convex: head, torso, arms down the sides over the top of the legs, legs apart
+    "person": ((1, ELLIPSE, (0.3, 0.0, 0.7, 0.2)), (0, RECT, (0.14, 0.18, 0.86, 0.6)),
+               (2, RECT, (0.16, 0.58, 0.46, 1.0)), (2, RECT, (0.54, 0.58, 0.84, 1.0)),
+               (3, RECT, (0.0, 0.22, 0.2, 0.68)), (3, RECT, (0.8, 0.22, 1.0, 0.68))),
+    # round: two half-panels meeting in the middle, a spot on the lower edge
+    "disc": ((0, ELLIPSE, (0.0, 0.0, 1.0, 1.0)), (1, RECT, (0.2, 0.3, 0.5, 0.62)),
+             (2, RECT, (0.5, 0.3, 0.8, 0.62)), (3, ELLIPSE, (0.38, 0.8, 0.62, 1.0))),
+}
+SHAPE_SIZES = {"car": (0.1, 0.09), "person": (0.065, 0.2), "disc": (0.08, 0.107)}  # share of width, height
+COLOUR_SLOTS = 4
+MIXED = "mixed"  # object i has shape i of SHAPES, cycling
 
 
 @dataclass(frozen=True)
@@ -46,6 +58,7 @@ class SceneConfig:
     object_scale: float = 1.0
     rotation: float = 0.0  # degrees: the camera also turns (yaw), up to this either way
     zoom: float = 0.0      # the camera also zooms, up to this share in and out
+    shape: str = "car"     # one of SHAPES, or "mixed"
 
 
     def __post_init__(self) -> None:
@@ -57,6 +70,18 @@ class SceneConfig:
             raise ValueError("noise >= 0 and 0 <= illumination < 1 are required")
         if not 0 <= self.rotation <= 45 or not 0 <= self.zoom < 0.5:
             raise ValueError("0 <= rotation <= 45 degrees and 0 <= zoom < 0.5 are required")
+        if self.shape != MIXED and self.shape not in SHAPES:
+            raise ValueError(f"shape {self.shape!r} is not one of {', '.join([*SHAPES, MIXED])}")
+
+    def shape_of(self, obj: int) -> str:
+        """Shape of object ``obj``."""
+        return list(SHAPES)[obj % len(SHAPES)] if self.shape == MIXED else self.shape
+
+    def size_of(self, obj: int) -> tuple[int, int]:
+        """Width and height in pixels of object ``obj``."""
+        share_w, share_h = SHAPE_SIZES[self.shape_of(obj)]
+        return (max(8, int(round(share_w * self.width * self.object_scale))),
+                max(6, int(round(share_h * self.height * self.object_scale))))
 
 
 PRESETS = {
@@ -69,8 +94,8 @@ PRESETS = {
 class _World:
     rgb: np.ndarray                  # the background the camera pans over
     camera: np.ndarray               # (frames, 2) integer top-left of the view in the world
-    object_colours: np.ndarray       # (objects, parts, 3)
-    object_size: tuple[int, int]     # (w, h) in pixels
+    object_colours: np.ndarray       # (objects, COLOUR_SLOTS, 3)
+    stamps: list[np.ndarray]         # per object, (h, w) colour slot of each pixel, -1 where none
     paths: np.ndarray                # (objects, frames, 2) float top-left in the image
 
 
@@ -138,16 +163,16 @@ def _background(rng: np.random.Generator, cfg: SceneConfig, world_w: int, world_
     return rgb
 
 
-def _object_paths(rng: np.random.Generator, cfg: SceneConfig, size: tuple[int, int]) -> np.ndarray:
-    """Piecewise-linear image-space paths with abrupt turns; every third leg heads for the
-    centre (so paths cross); the last object leaves the view for 3-4 s every ~6-9 s."""
-    w, h = size
+def _object_paths(rng: np.random.Generator, cfg: SceneConfig) -> np.ndarray:
+    """Piecewise-linear image-space paths (top-left corners) with abrupt turns; every third leg
+    heads for the centre (so paths cross); the last object leaves the view for 3-4 s every ~6-9 s."""
     paths = np.empty((cfg.objects, cfg.frames, 2))
     low = np.array([0.02 * cfg.width, 0.02 * cfg.height])
-    high = np.array([cfg.width - w - 0.02 * cfg.width, cfg.height - h - 0.02 * cfg.height])
-    centre = (low + high) / 2
     scale = cfg.width / 640
     for obj in range(cfg.objects):
+        w, h = cfg.size_of(obj)
+        high = np.array([cfg.width - w - 0.02 * cfg.width, cfg.height - h - 0.02 * cfg.height])
+        centre = (low + high) / 2
         leaves = cfg.exits and obj == cfg.objects - 1 and cfg.objects > 0
         pos = rng.uniform(low, high)
         frame, leg = 0, 0
@@ -184,19 +209,19 @@ def build_world(cfg: SceneConfig) -> _World:
     """Lay out background, camera path, object colours and paths for ``cfg``."""
     rng = np.random.default_rng(cfg.seed)
     palette_bg = _distinct_colours(rng, 12, np.empty((0, 3)), 45)
-    n_object_colours = len(PART_BOXES) * (1 if cfg.identical else max(cfg.objects, 1))
+    n_object_colours = COLOUR_SLOTS * (1 if cfg.identical else max(cfg.objects, 1))
     object_palette = _distinct_colours(rng, n_object_colours, palette_bg, 40)
     if cfg.identical:
         colours = np.repeat(object_palette[None], cfg.objects, axis=0)
     else:
-        colours = object_palette.reshape(max(cfg.objects, 1), len(PART_BOXES), 3)[: cfg.objects]
+        colours = object_palette.reshape(max(cfg.objects, 1), COLOUR_SLOTS, 3)[: cfg.objects]
     margin = (int(0.3 * cfg.width), int(0.3 * cfg.height))
     world_w, world_h = cfg.width + 2 * margin[0], cfg.height + 2 * margin[1]
     background = _background(rng, cfg, world_w, world_h, palette_bg)
     camera = _camera_path(rng, cfg, margin)
-    size = (max(8, int(round(0.1 * cfg.width * cfg.object_scale))), max(6, int(round(0.09 * cfg.height * cfg.object_scale))))
-    paths = _object_paths(rng, cfg, size)
-    return _World(background, camera, colours, size, paths)
+    paths = _object_paths(rng, cfg)
+    stamps = [_stamp(SHAPES[cfg.shape_of(obj)], cfg.size_of(obj)) for obj in range(cfg.objects)]
+    return _World(background, camera, colours, stamps, paths)
 
 
 @dataclass(frozen=True)
@@ -208,14 +233,35 @@ class RenderedFrame:
     boxes: tuple[tuple[int, int, int, int] | None, ...]
 
 
-def _part_rects(x: float, y: float, size: tuple[int, int]) -> list[tuple[int, list[tuple[int, int, int, int]]]]:
+def _stamp(parts: tuple, size: tuple[int, int]) -> np.ndarray:
+    """(h, w) colour slot of each pixel of an object of ``size`` made of ``parts``, -1 where none."""
     w, h = size
-    x0, y0 = int(round(x)), int(round(y))
-    rects = []
-    for slot, boxes in enumerate(PART_BOXES):
-        rects.append((slot, [(x0 + int(round(bx0 * w)), y0 + int(round(by0 * h)),
-                              x0 + int(round(bx1 * w)), y0 + int(round(by1 * h))) for bx0, by0, bx1, by1 in boxes]))
-    return rects
+    stamp = np.full((h, w), -1, dtype=np.int8)
+    ys, xs = np.mgrid[0:h, 0:w] + 0.5
+    for slot, kind, (bx0, by0, bx1, by1) in parts:
+        x0, y0, x1, y1 = (int(round(bx0 * w)), int(round(by0 * h)), int(round(bx1 * w)), int(round(by1 * h)))
+        if kind == RECT:
+            stamp[y0:y1, x0:x1] = slot
+        else:
+            inside = (((xs - (x0 + x1) / 2) / max((x1 - x0) / 2, 0.5)) ** 2
+                      + ((ys - (y0 + y1) / 2) / max((y1 - y0) / 2, 0.5)) ** 2) <= 1
+            stamp[inside] = slot
+    return stamp
+
+
+def _draw(frame: np.ndarray, owner: np.ndarray, stamp: np.ndarray, colours: np.ndarray, corner: np.ndarray,
+          obj: int) -> None:
+    """Paint ``stamp`` with ``colours`` at top-left ``corner`` (rounded), clipped to the frame, in place."""
+    x0, y0 = int(round(corner[0])), int(round(corner[1]))
+    h, w = stamp.shape
+    height, width = owner.shape
+    xa, ya, xb, yb = max(x0, 0), max(y0, 0), min(x0 + w, width), min(y0 + h, height)
+    if xa >= xb or ya >= yb:
+        return
+    slots = stamp[ya - y0:yb - y0, xa - x0:xb - x0]
+    drawn = slots >= 0
+    frame[ya:yb, xa:xb][drawn] = colours[slots[drawn]]
+    owner[ya:yb, xa:xb][drawn] = obj
 
 
 def render(cfg: SceneConfig) -> Iterator[RenderedFrame]:
@@ -231,12 +277,7 @@ def render(cfg: SceneConfig) -> Iterator[RenderedFrame]:
             frame = world.rgb[cy:cy + H, cx:cx + W].copy()
         owner = np.full((H, W), -1, dtype=np.int16)
         for obj in range(cfg.objects):
-            for slot, rects in _part_rects(*world.paths[obj, t], world.object_size):
-                for x0, y0, x1, y1 in rects:
-                    xa, ya, xb, yb = max(x0, 0), max(y0, 0), min(x1, W), min(y1, H)
-                    if xa < xb and ya < yb:
-                        frame[ya:yb, xa:xb] = world.object_colours[obj, slot]
-                        owner[ya:yb, xa:xb] = obj
+            _draw(frame, owner, world.stamps[obj], world.object_colours[obj], world.paths[obj, t], obj)
         boxes = tuple(_visible_box(owner, obj) for obj in range(cfg.objects))
         if cfg.illumination or cfg.noise:
             gain = 1.0 + cfg.illumination * np.sin(2 * np.pi * t / max(cfg.frames, 2) * 2)

@@ -8,7 +8,8 @@ size ("larger", segmented scaled down to ``max_side``), a camera that also turns
 ("camera"), and objects of other shapes ("shapes": tall, round, several shapes at once). Prints,
 per video, the tracks found without being told the number of objects, each object's box precision/recall (%) and MOTA /
 IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90 or better and
-the mean MOTA / IDF1. Graphs are cached (``--cache``), so a second run only tracks.
+the mean MOTA / IDF1; with ``--pictures DIR``, each video's tracks as a contact sheet and a
+timeline. Graphs are cached (``--cache``), so a second run only tracks.
 Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,held-out,larger,camera,shapes] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
@@ -16,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import pickle
+import re
 import time
 from pathlib import Path
 
@@ -23,8 +25,10 @@ import numpy as np
 
 from trap_core.cli import parameter_assignment
 from trap_core.evaluation import match_objects, mot_measures
+from trap_core.clustering import Track
+from trap_core.outputs import Thumbnails, contact_sheet, track_timeline
 from trap_core.pipeline import GRAPH_STAGE, TrapParams, synthetic_graphs, track
-from trap_core.synthetic import PRESETS, SceneConfig
+from trap_core.synthetic import PRESETS, SceneConfig, render
 
 ANALOGUES = [(f"{preset} seed {seed}", dict(seed=seed, **PRESETS[preset]), "colour")
              for preset in ("anim1", "anim2") for seed in (0, 1, 2)]
@@ -107,10 +111,23 @@ def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None 
     return graphs, truth
 
 
+def _pictures(scene: dict, tracks: list[Track], n_frames: int, stem: Path) -> None:
+    """Contact sheet (``stem``_tracks.png: a dozen frames with the track boxes) and timeline
+    (``stem``_timeline.png) of one video's tracks; the frames are rendered again."""
+    thumbnails = Thumbnails(n_frames)
+    for frame in render(SceneConfig(**scene)):
+        thumbnails(frame.rgb)
+    stem.parent.mkdir(parents=True, exist_ok=True)
+    contact_sheet(thumbnails.images, tracks, thumbnails.scale, f"{stem}_tracks.png")
+    track_timeline(tracks, n_frames, f"{stem}_timeline.png")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sets", default=",".join(SETS), help="comma-separated: " + ", ".join(SETS))
     parser.add_argument("--cache", type=Path, default=Path.home() / ".cache" / "trap_ros" / "quality")
+    parser.add_argument("--pictures", type=Path, metavar="DIR",
+                        help="also write each video's contact sheet and timeline of tracks here")
     parser.add_argument("-p", dest="overrides", action="append", default=[], type=parameter_assignment,
                         metavar="NAME:=VALUE", help="parameter for every run (as process_bag's -p)")
     args = parser.parse_args()
@@ -125,6 +142,9 @@ def main() -> None:
             start = time.perf_counter()
             result = track(graphs, params)
             seconds = time.perf_counter() - start
+            if args.pictures:
+                slug = re.sub(r"[^0-9A-Za-z]+", "_", label).strip("_")
+                _pictures(scene, result.tracks, len(graphs), args.pictures / f"{name}_{slug}")
             boxes = [{int(f): tuple(b) for f, b in zip(t.frames, t.boxes)} for t in result.tracks]
             objects = match_objects(boxes, truth)
             scores = mot_measures(boxes, truth)

@@ -93,13 +93,12 @@ def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None 
     graph_overrides = {k: v for k, v in (overrides or {}).items() if k in GRAPH_STAGE and k != "threads"
                        and (segmentation == "felzenszwalb" or k not in FELZENSZWALB_ONLY)}
     params = TrapParams.from_mapping({"segmentation": segmentation, **graph_overrides})
+    # Every graph parameter the segmentation uses is in the key, defaults too: graphs cached
+    # under other defaults are not taken for these.
+    used = [k for k in GRAPH_STAGE if k not in ("segmentation", "threads")
+            and (segmentation == "felzenszwalb" or k not in FELZENSZWALB_ONLY)]
     key = "_".join(f"{k}{v}" for k, v in sorted(scene.items())) + f"_{segmentation}"
-    key += "".join(f"_{k}{v}" for k, v in sorted(graph_overrides.items()) if k != "max_side")
-    side = max(scene.get("width", 640), scene.get("height", 480))
-    if params.max_side and side > params.max_side:
-        key += f"_side{params.max_side}"  # segmented scaled down
-    elif side > TrapParams().max_side:
-        key += "_full"  # segmented at full size where the defaults scale down
+    key += "".join(f"_{k}{getattr(params, k)}" for k in used)
     path = cache / f"{key}.pkl"
     if path.exists():
         with open(path, "rb") as f:

@@ -29,7 +29,7 @@ class TrapParams:
     """Defaults are the paper's (TRAP_SPEC), marked (ours) where the paper is silent."""
 
     segmentation: str = _p("felzenszwalb", "felzenszwalb, or colour: exact-colour regions (synthetic videos)")
-    k: float = _p(10.0, "segmentation threshold constant (constant mode: colour-distance units)")
+    k: float = _p(7.0, "segmentation threshold constant (constant mode: colour-distance units)")
     sigma: float = _p(0.8, "Gaussian smoothing before segmentation")
     min_size: int = _p(20, "regions smaller than this (pixels) are merged")
     threshold: str = _p("constant", "constant (paper: tau = k) or size (original: tau = k/|C|)")

@@ -10,7 +10,7 @@ from trap_core.segmentation.errors import SegmentationError
 THRESHOLD_MODES = ("constant", "size")
 
 
-def felzenszwalb(rgb: np.ndarray, k: float = 10.0, sigma: float = 0.8, min_size: int = 20,
+def felzenszwalb(rgb: np.ndarray, k: float = 7.0, sigma: float = 0.8, min_size: int = 20,
                  threshold: str = "constant", connectivity: int = 4) -> tuple[np.ndarray, int]:
     """Segment an RGB frame into regions (TRAP_SPEC section 1).
 

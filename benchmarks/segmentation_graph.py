@@ -17,6 +17,7 @@ import numpy as np
 import skimage.data
 from skimage.segmentation import felzenszwalb as skimage_felzenszwalb
 
+from trap_core.pipeline import TrapParams
 from trap_core.rag import build_plane_graph
 from trap_core.segmentation import colour_components, felzenszwalb
 from trap_core.synthetic import SceneConfig, render
@@ -51,12 +52,14 @@ def main() -> None:
     parser.add_argument("--json", action="store_true", help="also print the figures as JSON")
     args = parser.parse_args()
     results = {}
+    k = TrapParams().k  # the default constant threshold
+    constant = f"ours constant (k={k:g})"
     for size in ((320, 240), (640, 480)):
         images = _images(size)
         ximgproc = cv2.ximgproc.segmentation.createGraphSegmentation(sigma=0.8, k=300, min_size=20)
         bgr = [cv2.cvtColor(image, cv2.COLOR_RGB2BGR) for image in images]
         row = {
-            "ours constant (k=10)": _ms_per_frame(lambda im: felzenszwalb(im, k=10), images, args.repeats),
+            constant: _ms_per_frame(lambda im: felzenszwalb(im, k=k), images, args.repeats),
             "ours size (k=300)": _ms_per_frame(lambda im: felzenszwalb(im, k=300, threshold="size"), images, args.repeats),
             "ours size 8-conn (k=300)": _ms_per_frame(
                 lambda im: felzenszwalb(im, k=300, threshold="size", connectivity=8), images, args.repeats),
@@ -64,12 +67,12 @@ def main() -> None:
             "skimage (scale=300)": _ms_per_frame(
                 lambda im: skimage_felzenszwalb(im, scale=300, sigma=0.8, min_size=20), images, 1),
         }
-        segmented = [felzenszwalb(image, k=10) for image in images]
+        segmented = [felzenszwalb(image, k=k) for image in images]
         row["regions (ours constant)"] = float(np.mean([n for _, n in segmented]))
         row["plane graph + embedding"] = _ms_per_frame(
             lambda pair: build_plane_graph(pair[0], pair[1], pair[2]),
             [(labels, n, image) for (labels, n), image in zip(segmented, images)], args.repeats)
-        both = lambda im: build_plane_graph(*felzenszwalb(im, k=10), im)  # noqa: E731
+        both = lambda im: build_plane_graph(*felzenszwalb(im, k=k), im)  # noqa: E731
         row["fps 1 thread (seg+graph)"] = _fps(both, images, 1, args.repeats)
         row["fps 2 threads (seg+graph)"] = _fps(both, images, 2, args.repeats)
         results[f"{size[0]}x{size[1]}"] = row
@@ -87,7 +90,7 @@ def main() -> None:
     for name in names:
         print(f"| {name} | " + " | ".join(f"{results[c][name]:.1f}" if name in results[c] else "" for c in columns) + " |")
     for column in columns[:2]:
-        ratio = results[column]["ours constant (k=10)"] / results[column]["cv2.ximgproc (k=300)"]
+        ratio = results[column][constant] / results[column]["cv2.ximgproc (k=300)"]
         speedup = results[column]["fps 2 threads (seg+graph)"] / results[column]["fps 1 thread (seg+graph)"]
         print(f"\n{column}: ours/ximgproc = {ratio:.2f}x time; 2 threads = {speedup:.2f}x frames per second")
     if args.json:

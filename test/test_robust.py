@@ -592,6 +592,37 @@ def test_lookalikes_overlapped_for_a_while_keep_their_tracks() -> None:
     assert len(merge_duplicates([tracks[0], _as_track(2, frames[:20], a[:20])], min_common=25)) == 2  # too short
 
 
+def _crossing(n: int = 100, at: int = 60) -> tuple[np.ndarray, np.ndarray]:
+    """Boxes of two look-alikes: one moving left all along, the other moving right until ``at``,
+    then (its path having gone on with the first) on the first one's boxes."""
+    frames = np.arange(n, dtype=float)
+    left = np.column_stack([400 - 3 * frames, np.full(n, 200.0), np.full(n, 40.0), np.full(n, 30.0)])
+    right = np.column_stack([100 + 2 * frames, np.full(n, 210.0), np.full(n, 40.0), np.full(n, 30.0)])
+    right[at:] = left[at:] + [2.0, 1.0, 0.0, 0.0]
+    return left, right
+
+
+def test_a_tail_on_another_tracks_object_is_dropped_from_the_track_that_turned() -> None:
+    from trap_core.robust import drop_shared_tails
+    left, right = _crossing()
+    frames = np.arange(100)
+    out = drop_shared_tails([_as_track(1, frames, left), _as_track(2, frames, right)], 100, 25, 12)
+    assert len(out[0]) == 100                          # went on as it was going
+    assert out[1].frames.tolist() == list(range(60))   # turned where they met: its tail is the other's
+
+
+def test_shared_tails_kept_when_no_track_turns_or_too_short() -> None:
+    from trap_core.robust import drop_shared_tails
+    frames = np.arange(100)
+    a, b = _lookalike_pair(100)
+    b[60:] = a[60:] + [2.0, 1.0, 0.0, 0.0]           # side by side, then together: neither turns
+    assert [len(t) for t in drop_shared_tails([_as_track(1, frames, a), _as_track(2, frames, b)], 100, 25, 12)] \
+        == [100, 100]
+    left, right = _crossing(at=85)                    # shared for 15 frames only
+    assert [len(t) for t in drop_shared_tails([_as_track(1, frames, left), _as_track(2, frames, right)], 100, 25,
+                                              12)] == [100, 100]
+
+
 def test_a_track_on_part_of_an_object_joins_the_objects_track() -> None:
     """A part track (the upper left quarter: IoU 0.25, all inside) over the frames it shares with
     the object's track, then on its own: one track. The same part beside the object's box (not

@@ -206,6 +206,9 @@ def test_process_bag_sigint_leaves_valid_partial_outputs(venv_bin: Path, tmp_pat
         assert {c.topic: c.msgcount for c in reader.connections}["/trap/detections"] == summary["frames"]
 
 
+ROS_TEARDOWN = "The following exception was never retrieved: cannot use Destroyable"
+
+
 def test_process_bag_keeps_what_it_read_before_a_bad_frame_and_fails(venv_bin: Path, tmp_path: Path) -> None:
     """A 4x4 frame after 40 good ones: those 40 are tracked and written, then one error line, exit 1."""
     from trap_core.bagio import write_image_bag
@@ -215,8 +218,12 @@ def test_process_bag_keeps_what_it_read_before_a_bad_frame_and_fails(venv_bin: P
     done = _process_bag(venv_bin / "process_bag", tmp_path / "bag", tmp_path / "out", "--ros-args", "-p",
                         "segmentation:=colour")
     assert done.returncode == 1
-    last = done.stderr.strip().splitlines()[-1]
-    assert last.startswith("process_bag: error:") and "frame 40" in last and "too small to track" in last
+    lines = done.stderr.strip().splitlines()
+    errors = [k for k, line in enumerate(lines) if line.startswith("process_bag: error:")]
+    assert len(errors) == 1 and "frame 40" in lines[errors[0]] and "too small to track" in lines[errors[0]]
+    # After it, at most rclpy's own teardown print (a callback cut short by the nodes' destruction,
+    # in a few runs out of a hundred under load): nothing of ours.
+    assert all(line.startswith(ROS_TEARDOWN) for line in lines[errors[0] + 1:]), lines[errors[0]:]
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert summary["frames"] == 40
     from rosbags.highlevel import AnyReader

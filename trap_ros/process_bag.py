@@ -142,6 +142,7 @@ def _main() -> int:
         meter.advance(mining.received - meter.done)
         meter.finish()
         executor.shutdown(timeout_sec=5)
+        spinner.join(timeout=5)  # the nodes are destroyed below: not while a wait still holds them
         seconds = {"total": time.perf_counter() - start, **(mining.result.seconds if mining.result else {})}
         run = BagRun(reader.stream.topic, mining.received, mining.regions / max(mining.received, 1), mining.result,
                      seconds, {}, interrupted)

@@ -86,7 +86,9 @@ class TrapParams:
     fill_gaps: bool = _p(True, "robust: a track's box is interpolated through its gaps of at most tau frames "
                                "(patterns missed for a few frames)")
     one_track: bool = _p(True, "robust: tracks whose boxes match (IoU >= 0.5, or the smaller 90 % inside the other) "
-                               "in 80 % of the (at least tau) frames they share hold one object: they are merged")
+                               "in 80 % of the (at least tau) frames they share hold one object: they are merged; "
+                               "a track whose last tau or more frames repeat another's boxes, and which turns where "
+                               "they meet, loses them")
     to_border: bool = _p(True, "robust: a track that ends (starts) at the image border is continued while its object, "
                                "moving as over its last (first) tau/2 frames fully in view, is partly visible")
     groups: bool = _p(True, "robust: where tracks' boxes merge, each gets its usual size at its side of the pair, "

@@ -10,6 +10,11 @@ at least ``min_inside`` inside the other (a fragment on part of the object, rejo
 fragment of it, makes a track that holds part of the object where it overlaps the object's other
 track). Over *all* the frames they share, not only some: look-alikes that travel overlapped for
 a while and then part keep their own tracks.
+
+A track can also end up on another track's object: where look-alikes cross, a pattern's path can
+go on with the other object, and its track then repeats that object's boxes from there to its
+end. :func:`drop_shared_tails` takes such a tail away from the track whose motion turns where the
+two meet (the other went on as it was going).
 """
 from __future__ import annotations
 
@@ -19,6 +24,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from trap_core.clustering import Track, box_containment, box_iou, with_frames
+
+TURN = 0.1  # a velocity change of this share of the box size per frame is a turn, not jitter
 
 
 def merge_duplicates(tracks: Sequence[Track], min_common: int, min_iou: float = 0.5, min_inside: float = 0.9,
@@ -51,3 +58,52 @@ def _union(kept: Track, other: Track) -> Track:
     extra = ~np.isin(other.frames, kept.frames)
     return with_frames(kept, other.frames[extra], other.boxes[extra], other.score[extra],
                        None if other.points is None else other.points[extra])
+
+
+def drop_shared_tails(tracks: Sequence[Track], n_frames: int, min_frames: int, window: int,
+                      min_iou: float = 0.5) -> list[Track]:
+    """Tracks without tails that repeat another track's boxes; tracks left empty are dropped.
+
+    A tail is shared when two tracks' boxes match (IoU at least ``min_iou``) in every frame from
+    some frame to the last of one of them, for at least ``min_frames`` frames. That track loses
+    it if its motion turns there: the mean velocity of its box centre over ``window`` frames
+    after differs from the one over ``window`` frames before by more than the other track's
+    does, and by more than ``TURN`` times its box size per frame. Look-alikes that go on
+    together keep both tracks: neither turns.
+    """
+    out = list(tracks)
+    boxes = np.full((len(out), n_frames, 4), np.nan)
+    for slot, t in enumerate(out):
+        boxes[slot, t.frames] = t.boxes
+    for a in range(len(out)):
+        for b in range(len(out)):
+            if a == b or len(out[a]) == 0:
+                continue
+            last = int(out[a].frames[-1])
+            same = box_iou(boxes[a], boxes[b]) >= min_iou
+            start = last
+            while start > 0 and same[start - 1]:
+                start -= 1
+            if not same[last] or last - start + 1 < min_frames:
+                continue
+            turn = _turn(boxes[a], start, window)
+            if turn > _turn(boxes[b], start, window) and turn > TURN * float(np.nanmedian(boxes[a, :, 2:4])):
+                kept = out[a].frames < start
+                t = out[a]
+                out[a] = dataclasses.replace(t, frames=t.frames[kept], boxes=t.boxes[kept], score=t.score[kept],
+                                             points=None if t.points is None else t.points[kept])
+                boxes[a, start:] = np.nan
+    return [t for t in out if len(t)]
+
+
+def _turn(boxes: np.ndarray, at: int, window: int) -> float:
+    """Change of the box centre's mean velocity at frame ``at``: over ``window`` frames after
+    against ``window`` frames before (px per frame; 0 where a side has fewer than two boxes)."""
+    centres = boxes[:, :2] + boxes[:, 2:4] / 2
+    velocities = []
+    for frames in (np.arange(max(at - window, 0), at), np.arange(at, min(at + window, len(boxes)))):
+        seen = frames[~np.isnan(centres[frames, 0])]
+        if seen.size < 2:
+            return 0.0
+        velocities.append(np.polyfit(seen, centres[seen], 1)[0])
+    return float(np.linalg.norm(velocities[1] - velocities[0]))

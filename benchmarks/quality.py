@@ -90,15 +90,13 @@ def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None 
     ``overrides`` of segmentation and graph parameters (``GRAPH_STAGE``) make graphs of their own
     (Felzenszwalb's own parameters only where it segments).
     """
-    graph_overrides = {k: v for k, v in (overrides or {}).items() if k in GRAPH_STAGE and k != "threads"
-                       and (segmentation == "felzenszwalb" or k not in FELZENSZWALB_ONLY)}
+    used = [k for k in GRAPH_STAGE if k != "threads" and (segmentation == "felzenszwalb" or k not in FELZENSZWALB_ONLY)]
+    graph_overrides = {k: v for k, v in (overrides or {}).items() if k in used}
     params = TrapParams.from_mapping({"segmentation": segmentation, **graph_overrides})
     # Every graph parameter the segmentation uses is in the key, defaults too: graphs cached
     # under other defaults are not taken for these.
-    used = [k for k in GRAPH_STAGE if k not in ("segmentation", "threads")
-            and (segmentation == "felzenszwalb" or k not in FELZENSZWALB_ONLY)]
     key = "_".join(f"{k}{v}" for k, v in sorted(scene.items())) + f"_{segmentation}"
-    key += "".join(f"_{k}{getattr(params, k)}" for k in used)
+    key += "".join(f"_{k}{getattr(params, k)}" for k in used if k != "segmentation")
     path = cache / f"{key}.pkl"
     if path.exists():
         with open(path, "rb") as f:

@@ -5,7 +5,7 @@ from trap_core.clustering.errors import ClusteringError
 from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns, labels_after_merges, lifetime_cut
 from trap_core.clustering.selection import ClusterSummary, select_clusters, summarise
 from trap_core.clustering.tracks import (Track, box_containment, box_iou, build_track, core_regions, frame_face_sets,
-                                        with_frames)
+                                        in_rows, with_frames)
 from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
 
 __all__ = [
@@ -22,6 +22,7 @@ __all__ = [
     "cluster_patterns",
     "core_regions",
     "frame_face_sets",
+    "in_rows",
     "labels_after_merges",
     "lifetime_cut",
     "observed_paths",

@@ -43,6 +43,12 @@ def with_frames(track: Track, frames: np.ndarray, boxes: np.ndarray, score: np.n
                                score=np.concatenate([track.score, score])[order], points=merged_points)
 
 
+def in_rows(track: Track, rows: np.ndarray) -> Track:
+    """``track`` in the rows ``rows`` (a mask or indices of its frames) only."""
+    return dataclasses.replace(track, frames=track.frames[rows], boxes=track.boxes[rows], score=track.score[rows],
+                               points=None if track.points is None else track.points[rows])
+
+
 def box_iou(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Intersection over union of boxes ``(x, y, w, h)`` (last axis), broadcast over the others."""
     a, b, inter = _intersection(a, b)

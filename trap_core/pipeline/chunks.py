@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from trap_core.clustering import Track, box_iou
+from trap_core.clustering import Track, box_iou, in_rows
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.pipeline.tracking import TrackingResult, frame_rate, track
@@ -217,8 +217,7 @@ class ChunkedTracker:
         for t in self._pending or []:
             keep = (t.frames >= self.final_frames) & (t.frames < stop)
             if keep.any():
-                piece = dataclasses.replace(t, frames=t.frames[keep], boxes=t.boxes[keep], score=t.score[keep],
-                                            points=None if t.points is None else t.points[keep])
+                piece = in_rows(t, keep)
                 self._pieces.setdefault(t.track_id, []).append(piece)
                 self._fresh.append(piece)
         self.final_frames = stop

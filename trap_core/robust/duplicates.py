@@ -23,7 +23,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, box_containment, box_iou, with_frames
+from trap_core.clustering import Track, box_containment, box_iou, in_rows, with_frames
 
 TURN = 0.1  # a velocity change of this share of the box size per frame is a turn, not jitter
 
@@ -88,10 +88,7 @@ def drop_shared_tails(tracks: Sequence[Track], n_frames: int, min_frames: int, w
                 continue
             turn = _turn(boxes[a], start, window)
             if turn > _turn(boxes[b], start, window) and turn > TURN * float(np.nanmedian(boxes[a, :, 2:4])):
-                kept = out[a].frames < start
-                t = out[a]
-                out[a] = dataclasses.replace(t, frames=t.frames[kept], boxes=t.boxes[kept], score=t.score[kept],
-                                             points=None if t.points is None else t.points[kept])
+                out[a] = in_rows(out[a], out[a].frames < start)
                 boxes[a, start:] = np.nan
     return [t for t in out if len(t)]
 

@@ -91,15 +91,19 @@ def _prediction_error(paths: Trajectories, earlier: int, later: int, transforms:
     tail = before[-min(len(before), 10):]
     gap = paths.start[later] - paths.end[earlier]
     arrival = paths.of(later)[0]
-    in_view = before[-1] + (tail[-1] - tail[0]) / max(len(tail) - 1, 1) * gap
-    error = float(np.linalg.norm(arrival - in_view))
+    error = float(np.linalg.norm(arrival - _extrapolated(tail, gap)))
     if transforms is None:
         return error
     frames = np.arange(paths.end[earlier] - len(tail) + 1, paths.end[earlier] + 1)
-    world = map_points(np.linalg.inv(transforms[frames]), tail)
-    in_world = world[-1] + (world[-1] - world[0]) / max(len(tail) - 1, 1) * gap
+    in_world = _extrapolated(map_points(np.linalg.inv(transforms[frames]), tail), gap)
     seen = map_points(transforms[paths.start[later]], in_world[None])[0]
     return min(error, float(np.linalg.norm(arrival - seen)))
+
+
+def _extrapolated(tail: np.ndarray, gap: int) -> np.ndarray:
+    """Where a path whose last positions are ``tail`` (one per frame) is ``gap`` frames after
+    the last, at the mean velocity over ``tail``."""
+    return tail[-1] + (tail[-1] - tail[0]) / max(len(tail) - 1, 1) * gap
 
 
 def _flag_near(labels: np.ndarray, pattern_edge: np.ndarray, cluster_edge: np.ndarray, flags: np.ndarray,

@@ -498,11 +498,31 @@ def test_a_cluster_on_two_objects_at_once_is_split_down_the_hierarchy() -> None:
     distances = pattern_distances(paths)
     matrix = linkage(distances, method="average")
     one_cluster = Hierarchy(4, matrix, 1, np.zeros(4, dtype=np.int64))  # a cut that took everything
-    labels = split_mixed(one_cluster, distances, paths, np.full(4, 40.0))
+    labels = split_mixed(one_cluster, distances, paths, np.full(4, 40.0), 25)
     assert labels[0] == labels[1] and labels[2] == labels[3] and labels[0] != labels[2]
-    assert len(set(split_mixed(one_cluster, distances, paths, np.full(4, 250.0)).tolist())) == 1  # large objects
+    assert len(set(split_mixed(one_cluster, distances, paths, np.full(4, 250.0), 25).tolist())) == 1  # large objects
     later = Trajectories.pack([0, 0, 100, 100], pieces)  # object 2's patterns come after: nothing at once
-    assert len(set(split_mixed(one_cluster, pattern_distances(later), later, np.full(4, 40.0)).tolist())) == 1
+    assert len(set(split_mixed(one_cluster, pattern_distances(later), later, np.full(4, 40.0), 25).tolist())) == 1
+
+
+def test_a_pattern_whose_path_went_on_with_a_lookalike_is_split_from_the_lookalike() -> None:
+    """Two look-alikes meet at frame 40; one pattern's path went on with the other object, so
+    over 200 frames the two patterns are close on average (apart only before the meeting)."""
+    from scipy.cluster.hierarchy import linkage
+    from trap_core.clustering import Hierarchy, pattern_distances
+    from trap_core.robust import split_mixed
+    frames = np.arange(200.0)[:, None]
+    coming_left = np.hstack([300 - 3 * frames, np.full_like(frames, 100)])
+    coming_right = np.where(frames < 40, np.hstack([20 + 4 * frames, np.full_like(frames, 100)]), coming_left)
+    pieces = [coming_left, coming_left + [5, 0], coming_right, coming_right + [5, 0]]
+    paths = Trajectories.pack([0, 0, 0, 0], pieces)
+    distances = pattern_distances(paths)
+    assert np.all(distances < 40)  # on average closer than their size: together
+    # apart (more than 40 px) in the first 35 frames
+    one_cluster = Hierarchy(4, linkage(distances, method="average"), 1, np.zeros(4, dtype=np.int64))
+    labels = split_mixed(one_cluster, distances, paths, np.full(4, 40.0), 25)
+    assert labels[0] == labels[1] and labels[2] == labels[3] and labels[0] != labels[2]
+    assert len(set(split_mixed(one_cluster, distances, paths, np.full(4, 40.0), 36).tolist())) == 1
 
 
 def test_a_cluster_of_jittering_patterns_is_still_and_a_moving_one_is_not() -> None:
@@ -603,23 +623,38 @@ def _crossing(n: int = 100, at: int = 60) -> tuple[np.ndarray, np.ndarray]:
 
 
 def test_a_tail_on_another_tracks_object_is_dropped_from_the_track_that_turned() -> None:
-    from trap_core.robust import drop_shared_tails
+    from trap_core.robust import drop_shared_stretches
     left, right = _crossing()
     frames = np.arange(100)
-    out = drop_shared_tails([_as_track(1, frames, left), _as_track(2, frames, right)], 100, 25, 12)
+    out = drop_shared_stretches([_as_track(1, frames, left), _as_track(2, frames, right)], 100, 25, 12)
     assert len(out[0]) == 100                          # went on as it was going
     assert out[1].frames.tolist() == list(range(60))   # turned where they met: its tail is the other's
 
 
+def test_a_stretch_on_another_tracks_object_is_dropped_from_the_track_that_turned_there() -> None:
+    """A path that went on with the other look-alike at frame 60 and came back to its own object
+    at frame 100 (which had gone on out of sight of its patterns): the stretch between is the other
+    track's, with two frames of box jitter in it."""
+    from trap_core.robust import drop_shared_stretches
+    left, right = _crossing(n=160)
+    right[100:] = np.column_stack([100 + 2 * np.arange(100.0, 160.0), np.full(60, 210.0), np.full(60, 40.0),
+                                   np.full(60, 30.0)])
+    right[80:82, 0] += 25                              # jitter: IoU below 0.5 for two frames
+    frames = np.arange(160)
+    out = drop_shared_stretches([_as_track(1, frames, left), _as_track(2, frames, right)], 160, 25, 12)
+    assert len(out[0]) == 160
+    assert out[1].frames.tolist() == list(range(60)) + list(range(100, 160))
+
+
 def test_shared_tails_kept_when_no_track_turns_or_too_short() -> None:
-    from trap_core.robust import drop_shared_tails
+    from trap_core.robust import drop_shared_stretches
     frames = np.arange(100)
     a, b = _lookalike_pair(100)
     b[60:] = a[60:] + [2.0, 1.0, 0.0, 0.0]           # side by side, then together: neither turns
-    assert [len(t) for t in drop_shared_tails([_as_track(1, frames, a), _as_track(2, frames, b)], 100, 25, 12)] \
+    assert [len(t) for t in drop_shared_stretches([_as_track(1, frames, a), _as_track(2, frames, b)], 100, 25, 12)] \
         == [100, 100]
     left, right = _crossing(at=85)                    # shared for 15 frames only
-    assert [len(t) for t in drop_shared_tails([_as_track(1, frames, left), _as_track(2, frames, right)], 100, 25,
+    assert [len(t) for t in drop_shared_stretches([_as_track(1, frames, left), _as_track(2, frames, right)], 100, 25,
                                               12)] == [100, 100]
 
 

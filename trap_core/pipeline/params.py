@@ -67,8 +67,9 @@ class TrapParams:
     min_speed: float = _p(0.03, "robust: image widths per second, relative to the camera and over tau/2 frames, "
                                 "below which patterns (and, over tau frames, clusters) are background (0.03 = 0.75 "
                                 "px/frame at 640 px, 25 Hz); 0 = off")
-    one_object: bool = _p(True, "robust: a cluster of the cut whose patterns lie on two objects at once (on average "
-                                "further apart than half their sizes) is split down the hierarchy")
+    one_object: bool = _p(True, "robust: a cluster of the cut whose patterns lie on two objects at once (further "
+                                "apart than half their sizes on average, or in tau frames) is split down the "
+                                "hierarchy")
     rejoin: bool = _p(True, "robust: rejoin fragments of one object across occlusions and exits")
     rejoin_similarity: float = _p(0.3, "robust: share of a fragment (counted in occurrences) whose structures the "
                                        "other also has, needed to rejoin them")
@@ -87,8 +88,8 @@ class TrapParams:
                                "(patterns missed for a few frames)")
     one_track: bool = _p(True, "robust: tracks whose boxes match (IoU >= 0.5, or the smaller 90 % inside the other) "
                                "in 80 % of the (at least tau) frames they share hold one object: they are merged; "
-                               "a track whose last tau or more frames repeat another's boxes, and which turns where "
-                               "they meet, loses them")
+                               "a stretch of tau or more frames where a track repeats another's boxes is dropped "
+                               "from it if it turns where the stretch begins or ends")
     to_border: bool = _p(True, "robust: a track that ends (starts) at the image border is continued while its object, "
                                "moving as over its last (first) tau/2 frames fully in view, is partly visible")
     groups: bool = _p(True, "robust: where tracks' boxes merge, each gets its usual size at its side of the pair, "

@@ -14,7 +14,7 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed, continue_to_border,
-                              drop_shared_tails, drop_still_regions, fill_gaps, grow_boxes, merge_duplicates,
+                              drop_shared_stretches, drop_still_regions, fill_gaps, grow_boxes, merge_duplicates,
                               pattern_sizes, rejoin_fragments, separate_groups, split_mixed, world_speed)
 
 
@@ -81,7 +81,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     hierarchy = cluster_patterns(distances, len(sub_paths), params.linkage, params.ignore_top)
     labels = hierarchy.labels
     if robust and params.one_object:
-        labels = split_mixed(hierarchy, distances, sub_paths, pattern_sizes(mined, clustered))
+        labels = split_mixed(hierarchy, distances, sub_paths, pattern_sizes(mined, clustered), params.tau)
     occurrences = np.diff(mined.st_offsets)[clustered]
     if robust and params.rejoin:
         labels = rejoin_fragments(labels, sub_paths, mined.st_pattern[clustered], n_frames,
@@ -113,7 +113,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=params.groups, patience=params.tau)
     if robust and params.one_track:
-        tracks = drop_shared_tails(tracks, n_frames, params.tau, max(3, params.tau // 2))
+        tracks = drop_shared_stretches(tracks, n_frames, params.tau, max(3, params.tau // 2))
     if robust and params.to_border:
         tracks = [continue_to_border(t, n_frames, width, height, max(3, params.tau // 2), 2 * params.tau)
                   for t in tracks]

@@ -12,9 +12,10 @@ track). Over *all* the frames they share, not only some: look-alikes that travel
 a while and then part keep their own tracks.
 
 A track can also end up on another track's object: where look-alikes cross, a pattern's path can
-go on with the other object, and its track then repeats that object's boxes from there to its
-end. :func:`drop_shared_tails` takes such a tail away from the track whose motion turns where the
-two meet (the other went on as it was going).
+go on with the other object, and its track then repeats that object's boxes for a while: to its
+end, or until the path comes back to its own object. :func:`drop_shared_stretches` takes such a
+stretch away from the track whose motion turns where the two meet or part (the other went on as
+it was going).
 """
 from __future__ import annotations
 
@@ -26,6 +27,7 @@ import numpy as np
 from trap_core.clustering import Track, box_containment, box_iou, in_rows, with_frames
 
 TURN = 0.1  # a velocity change of this share of the box size per frame is a turn, not jitter
+HOLE = 3  # frames in a row where jitter may part two boxes that hold the same object
 
 
 def merge_duplicates(tracks: Sequence[Track], min_common: int, min_iou: float = 0.5, min_inside: float = 0.9,
@@ -60,16 +62,17 @@ def _union(kept: Track, other: Track) -> Track:
                        None if other.points is None else other.points[extra])
 
 
-def drop_shared_tails(tracks: Sequence[Track], n_frames: int, min_frames: int, window: int,
-                      min_iou: float = 0.5) -> list[Track]:
-    """Tracks without tails that repeat another track's boxes; tracks left empty are dropped.
+def drop_shared_stretches(tracks: Sequence[Track], n_frames: int, min_frames: int, window: int,
+                          min_iou: float = 0.5) -> list[Track]:
+    """Tracks without stretches that repeat another track's boxes; tracks left empty are dropped.
 
-    A tail is shared when two tracks' boxes match (IoU at least ``min_iou``) in every frame from
-    some frame to the last of one of them, for at least ``min_frames`` frames. That track loses
-    it if its motion turns there: the mean velocity of its box centre over ``window`` frames
-    after differs from the one over ``window`` frames before by more than the other track's
-    does, and by more than ``TURN`` times its box size per frame. Look-alikes that go on
-    together keep both tracks: neither turns.
+    A stretch is shared when two tracks' boxes match (IoU at least ``min_iou``) in every frame
+    of it but up to ``HOLE`` frames at a time (box jitter), for at least ``min_frames`` frames.
+    A track loses it if its motion turns where the stretch begins or where it ends (not at the
+    track's own first or last frame): the mean velocity of its box centre over ``window``
+    frames after differs from the one over ``window`` frames before by more than the other
+    track's does, and by more than ``TURN`` times its box size per frame. Look-alikes that go
+    on together, or travel together and part, keep both tracks: neither turns.
     """
     out = list(tracks)
     boxes = np.full((len(out), n_frames, 4), np.nan)
@@ -79,18 +82,27 @@ def drop_shared_tails(tracks: Sequence[Track], n_frames: int, min_frames: int, w
         for b in range(len(out)):
             if a == b or len(out[a]) == 0:
                 continue
-            last = int(out[a].frames[-1])
-            same = box_iou(boxes[a], boxes[b]) >= min_iou
-            start = last
-            while start > 0 and same[start - 1]:
-                start -= 1
-            if not same[last] or last - start + 1 < min_frames:
-                continue
-            turn = _turn(boxes[a], start, window)
-            if turn > _turn(boxes[b], start, window) and turn > TURN * float(np.nanmedian(boxes[a, :, 2:4])):
-                out[a] = in_rows(out[a], out[a].frames < start)
-                boxes[a, start:] = np.nan
+            first, last = int(out[a].frames[0]), int(out[a].frames[-1])
+            least = TURN * float(np.nanmedian(boxes[a, :, 2:4]))
+            for start, end in _stretches(box_iou(boxes[a], boxes[b]) >= min_iou, min_frames):
+                ends = [at for at, inside in ((start, start > first), (end + 1, end < last)) if inside]
+                if any(_turn(boxes[a], at, window) > max(_turn(boxes[b], at, window), least) for at in ends):
+                    out[a] = in_rows(out[a], (out[a].frames < start) | (out[a].frames > end))
+                    boxes[a, start:end + 1] = np.nan
     return [t for t in out if len(t)]
+
+
+def _stretches(same: np.ndarray, min_frames: int) -> list[tuple[int, int]]:
+    """First and last frame of each run of ``same`` (holes of up to ``HOLE`` frames bridged) of
+    at least ``min_frames`` frames."""
+    edges = np.diff(np.concatenate(([0], same.astype(np.int8), [0])))
+    runs: list[list[int]] = []
+    for begin, stop in zip(np.flatnonzero(edges == 1).tolist(), np.flatnonzero(edges == -1).tolist()):
+        if runs and begin - runs[-1][1] <= HOLE:
+            runs[-1][1] = stop
+        else:
+            runs.append([begin, stop])
+    return [(begin, stop - 1) for begin, stop in runs if stop - begin >= min_frames]
 
 
 def _turn(boxes: np.ndarray, at: int, window: int) -> float:

@@ -3,10 +3,13 @@
 The lifetime cut (TRAP_SPEC section 6) chooses one level for the whole hierarchy. Once the
 background is left out, few patterns remain and the chosen level can hold a cluster whose
 patterns lie on two objects at the same time: averaged, its path runs between them. Two
-patterns of one object seen in the same frames are never further apart, on average over those
-frames, than half the sum of their sizes (their occurrence boxes' diagonals): they overlap or
-touch. A cluster with such a pair too far apart is replaced by the two clusters it was merged
-from, and so on down the hierarchy until every cluster passes.
+patterns of one object seen in the same frames are never further apart than half the sum of
+their sizes (their occurrence boxes' diagonals): they overlap or touch. Such a pair is taken for
+two objects when it is further apart on average over those frames, or in at least ``min_apart``
+of them: where look-alikes meet, a pattern's path can go on with the other object, and its
+pattern then shares that object's path for the rest of the video, which the average hides. A
+cluster with such a pair is replaced by the two clusters it was merged from, and so on down the
+hierarchy until every cluster passes.
 """
 from __future__ import annotations
 
@@ -27,7 +30,8 @@ def pattern_sizes(result: MiningResult, patterns: np.ndarray) -> np.ndarray:
     return np.bincount(owner, weights=diagonal, minlength=patterns.size) / np.maximum(lengths, 1)
 
 
-def split_mixed(hierarchy: Hierarchy, distances: np.ndarray, paths: Trajectories, sizes: np.ndarray) -> np.ndarray:
+def split_mixed(hierarchy: Hierarchy, distances: np.ndarray, paths: Trajectories, sizes: np.ndarray,
+                min_apart: int) -> np.ndarray:
     """Cluster labels (0..C'-1) of the cut with every cluster that mixes objects split.
 
     Parameters
@@ -41,6 +45,9 @@ def split_mixed(hierarchy: Hierarchy, distances: np.ndarray, paths: Trajectories
         The clustered patterns' trajectories (their spans give ``d_ov``).
     sizes : (n,) array
         Size of each pattern (:func:`pattern_sizes`).
+    min_apart : int
+        Frames in which two patterns further apart than half the sum of their sizes are on two
+        objects whatever their mean distance (``tau``).
 
     Returns
     -------
@@ -63,12 +70,30 @@ def split_mixed(hierarchy: Hierarchy, distances: np.ndarray, paths: Trajectories
     while stack:
         node = stack.pop()
         leaves = _leaves(children, n, node)
-        if node < n or (node < below_cut and not far[np.ix_(leaves, leaves)].any()):
+        if node < n or (node < below_cut and not far[np.ix_(leaves, leaves)].any()
+                        and not _apart_for(paths, leaves, sizes, min_apart)):
             labels[leaves] = next_label
             next_label += 1
         else:
             stack.extend(children[node - n].tolist())
     return np.unique(labels, return_inverse=True)[1]
+
+
+def _apart_for(paths: Trajectories, patterns: np.ndarray, sizes: np.ndarray, min_frames: int) -> bool:
+    """Whether two of ``patterns`` are further apart than half the sum of their sizes in at least
+    ``min_frames`` of the frames both are seen in. Only the clusters of the cut are tested (tens
+    of patterns once the background is left out), so a dense (patterns, frames) array is cheap."""
+    first = int(paths.start[patterns].min())
+    dense = np.full((patterns.size, int(paths.end[patterns].max()) - first + 1, 2), np.nan)
+    for row, pattern in enumerate(patterns):
+        dense[row, paths.start[pattern] - first:paths.end[pattern] - first + 1] = paths.of(pattern)
+    for row in range(patterns.size - 1):
+        gap = np.linalg.norm(dense[row + 1:] - dense[row], axis=2)  # nan where either is unseen
+        limit = (sizes[patterns[row + 1:]] + sizes[patterns[row]])[:, None] / 2
+        with np.errstate(invalid="ignore"):
+            if np.any(np.count_nonzero(gap > limit, axis=1) >= min_frames):
+                return True
+    return False
 
 
 def _leaves(children: np.ndarray, n: int, node: int) -> np.ndarray:

@@ -7,7 +7,7 @@ from scipy.cluster.hierarchy import linkage
 
 from trap_core.clustering import (ClusteringError, Trajectories, build_track, cluster_patterns, labels_after_merges,
                                   lifetime_cut, observed_paths, pattern_distances, select_clusters, summarise,
-                                  trajectories)
+                                  trajectories, twin_clusters)
 from trap_core.mining import MiningResult
 
 
@@ -117,6 +117,30 @@ def test_selection_rejects_a_chain_of_fragments_on_kept_objects() -> None:
     alone = _paths([(0, a), (0, np.full((80, 2), 150.0))])  # far from the kept one all along
     summary = summarise(np.array([0, 1]), alone, np.ones(2), 100)
     assert select_clusters(summary, 100, min_length=0.3) == [0, 1]
+
+
+def test_selection_by_own_frames_prefers_a_cluster_of_its_own_to_a_chain() -> None:
+    """Cluster 1 follows kept cluster 0 for 40 frames, then object 1 for 60; cluster 2 is object
+    1 for 90 frames, 50 of them beside the chain. By all frames the chain comes first (and then
+    cluster 2 is mostly near it); by own frames cluster 2 does (and then the chain has 10 left)."""
+    a = np.zeros((100, 2))
+    chain = np.r_[np.zeros((40, 2)), np.full((60, 2), 300.0)]
+    paths = _paths([(0, a), (0, a), (0, a), (0, chain), (0, np.full((90, 2), 300.0))])
+    summary = summarise(np.array([0, 0, 0, 1, 2]), paths, np.ones(5), 100)
+    assert select_clusters(summary, 100) == [0, 1]
+    assert select_clusters(summary, 100, own_frames=True) == [0, 2]
+    assert select_clusters(summary, 100, n_objects=2, own_frames=True) == [0, 1]  # the paper's rule: longest
+
+
+def test_twin_clusters_are_beside_a_kept_one_with_frames_it_lacks() -> None:
+    """Cluster 1 holds kept cluster 0's object and goes on 40 frames after it ends; cluster 2 is
+    near it for 20 frames only; cluster 3 is kept."""
+    paths = _paths([(0, np.zeros((60, 2))), (0, np.full((100, 2), 5.0)), (0, np.r_[np.zeros((20, 2)),
+                    np.full((80, 2), 200.0)]), (0, np.full((100, 2), 400.0))])
+    summary = summarise(np.arange(4), paths, np.ones(4), 100)
+    assert twin_clusters(summary, [3, 0], 100, 0.25, 40.0, min_new=25) == [1]
+    assert twin_clusters(summary, [3, 0], 100, 0.25, 40.0, min_new=41) == []
+    assert twin_clusters(summary, [3, 0], 100, 0.25, 40.0, 25, eligible=np.array([1, 0, 1, 1], bool)) == []
 
 
 def test_track_boxes_and_scores() -> None:

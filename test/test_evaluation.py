@@ -68,7 +68,8 @@ def test_evaluate_writes_a_report(tmp_path: Path, venv_bin: Path) -> None:
     assert list(methods) == ["paper", "+ one path per object", "+ steps within reach", "+ label memory",
                              "+ camera motion", "+ one object per cluster", "+ rejoin fragments", "+ core boxes",
                              "+ background out of boxes", "+ grown boxes",
-                             "+ filled gaps", "+ one track per object", "+ steady box size", "+ where objects meet",
+                             "+ filled gaps", "+ one track per object", "+ own frames, twin clusters",
+                             "+ steady box size", "+ where objects meet",
                              "robust (+ across the border)"]
     assert all(0 <= o["box_p"] <= 1 for m in methods.values() for o in m["objects"])
     assert (tmp_path / "report" / "tracks_clip.png").exists()

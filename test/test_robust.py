@@ -646,6 +646,26 @@ def test_a_stretch_on_another_tracks_object_is_dropped_from_the_track_that_turne
     assert out[1].frames.tolist() == list(range(60)) + list(range(100, 160))
 
 
+def test_a_twin_lends_its_track_only_frames_the_track_lacks_at_the_usual_size_and_no_other_tracks() -> None:
+    """The kept track holds frames 0-59 of a look-alike; its twin holds the same object over
+    frames 0-99, but with the pair's box (twice as wide) in 90-99, and on the other look-alike
+    (the other track's boxes) in 80-89."""
+    from trap_core.robust import extend_from_twins
+    a, b = _lookalike_pair(100)
+    frames = np.arange(100)
+    twin = a.copy()
+    twin[80:90] = b[80:90]
+    twin[90:, 2] *= 2
+    kept, other = _as_track(1, frames[:60], a[:60]), _as_track(2, frames, b)
+    out = extend_from_twins([kept, other], [_as_track(0, frames, twin)], 25, size_jump=1.5)
+    assert out[0].frames.tolist() == list(range(80))
+    np.testing.assert_allclose(out[0].boxes, a[:80])
+    assert len(out[1]) == 100
+    assert len(extend_from_twins([kept, other], [_as_track(0, frames, twin)], 25, size_jump=0.0)[0]) == 90
+    stranger = _as_track(0, frames, a + [0.0, 300.0, 0.0, 0.0])  # holds neither track's object
+    assert [len(t) for t in extend_from_twins([kept, other], [stranger], 25, 1.5)] == [60, 100]
+
+
 def test_shared_tails_kept_when_no_track_turns_or_too_short() -> None:
     from trap_core.robust import drop_shared_stretches
     frames = np.arange(100)

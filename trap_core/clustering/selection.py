@@ -44,9 +44,9 @@ def summarise(labels: np.ndarray, tracks: Trajectories, occurrences_per_pattern:
                           paths)
 
 
-def _longest(summary: ClusterSummary, candidates: np.ndarray, tolerance_frames: float) -> int:
-    """The paper's "longest": within ``tolerance_frames`` of the longest, most patterns, then most occurrences."""
-    lengths = summary.length[candidates]
+def _longest(summary: ClusterSummary, candidates: np.ndarray, lengths: np.ndarray, tolerance_frames: float) -> int:
+    """The paper's "longest": within ``tolerance_frames`` of the longest of ``lengths`` (one per
+    candidate), most patterns, then most occurrences."""
     near = candidates[lengths >= lengths.max() - tolerance_frames]
     order = np.lexsort((-summary.n_occurrences[near], -summary.n_patterns[near]))
     return int(near[order[0]])
@@ -54,7 +54,7 @@ def _longest(summary: ClusterSummary, candidates: np.ndarray, tolerance_frames: 
 
 def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | None = None,
                     tolerance: float = 0.1, min_length: float = 0.25, separation: float = 40.0,
-                    max_objects: int = 20, eligible: np.ndarray | None = None) -> list[int]:
+                    max_objects: int = 20, eligible: np.ndarray | None = None, own_frames: bool = False) -> list[int]:
     """Clusters that are tracks, in order of selection.
 
     ``eligible``: per cluster, whether it may be a track at all (ours: clusters that move
@@ -66,34 +66,89 @@ def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | Non
     covers, within ``separation`` pixels of a cluster already kept: "the longest clusters that
     are far enough from each other". Counting frames against every kept cluster (not a mean
     distance to each) also rejects a chain of fragments that follows one object, then
-    another.
+    another. With ``own_frames`` (ours) "longest" counts only a cluster's own frames, those
+    where no kept cluster is near: a chain that follows a kept object for a third of its frames
+    no longer beats a shorter cluster that is all its own.
     """
     remaining = np.arange(summary.length.size)
     if eligible is not None:
         remaining = remaining[eligible]
+    if n_objects is None and own_frames:
+        return _most_own_frames(summary, remaining[summary.length[remaining] >= min_length * n_frames], n_frames,
+                                tolerance, separation, max_objects)
     chosen: list[int] = []
     limit = n_objects if n_objects is not None else max_objects
     while remaining.size and len(chosen) < limit:
-        best = _longest(summary, remaining, tolerance * n_frames)
+        best = _longest(summary, remaining, summary.length[remaining], tolerance * n_frames)
         remaining = remaining[remaining != best]
         if n_objects is None:
             if summary.length[best] < min_length * n_frames:
                 break
-            if chosen and _share_near(summary, best, chosen, separation) > 0.5:
+            if chosen and _near_kept(summary, np.array([best]), chosen, separation).sum() > summary.length[best] / 2:
                 continue
         chosen.append(best)
     return chosen
 
 
-def _share_near(summary: ClusterSummary, cluster: int, others: list[int], separation: float) -> float:
-    """Share of the frames ``cluster`` covers where its mean position is within ``separation``
-    pixels of the mean position of one of ``others`` covering that frame."""
-    frames = np.flatnonzero(summary.covered[cluster])
+def _most_own_frames(summary: ClusterSummary, candidates: np.ndarray, n_frames: int, tolerance: float,
+                     separation: float, max_objects: int) -> list[int]:
+    """Unsupervised selection among long enough ``candidates`` by own frames (no kept cluster
+    near), each kept only while at least half its frames are its own."""
+    chosen: list[int] = []
+    near = np.zeros((candidates.size, n_frames), dtype=bool)
+    while candidates.size and len(chosen) < max_objects:
+        own = (summary.covered[candidates] & ~near).sum(axis=1)
+        free = own >= summary.length[candidates] / 2
+        if not free.any():
+            break
+        chosen.append(_longest(summary, candidates[free], own[free], tolerance * n_frames))
+        keep = candidates != chosen[-1]
+        candidates, near = candidates[keep], near[keep] | _near_kept(summary, candidates[keep], chosen[-1:], separation)
+    return chosen
+
+
+def _near_kept(summary: ClusterSummary, clusters: np.ndarray, kept: list[int], separation: float) -> np.ndarray:
+    """(len(clusters), n_frames) bool: frames where a cluster's mean position is within
+    ``separation`` pixels of the mean position of one of ``kept`` covering that frame."""
+    return np.any([_near_frames(summary, clusters, other, separation) for other in kept], axis=0)
+
+
+def _near_frames(summary: ClusterSummary, clusters: np.ndarray, other: int, separation: float) -> np.ndarray:
+    """(len(clusters), n_frames) bool: frames where each cluster's mean position is within
+    ``separation`` pixels of the mean position of cluster ``other`` (both covering the frame)."""
     paths = summary.paths
-    here = paths.of(cluster)[frames - paths.start[cluster]]
-    near = np.zeros(frames.size, dtype=bool)
-    for other in others:
-        both = summary.covered[other, frames]
-        there = paths.of(other)[frames[both] - paths.start[other]]
-        near[both] |= np.linalg.norm(here[both] - there, axis=1) <= separation
-    return float(near.mean()) if frames.size else 0.0
+    there = np.full((summary.covered.shape[1], 2), np.nan)
+    frames = np.flatnonzero(summary.covered[other])
+    there[frames] = paths.of(other)[frames - paths.start[other]]
+    near = np.zeros((clusters.size, summary.covered.shape[1]), dtype=bool)
+    for row, cluster in enumerate(clusters):
+        both = np.flatnonzero(summary.covered[cluster] & summary.covered[other])
+        here = paths.of(cluster)[both - paths.start[cluster]]
+        near[row, both] = np.linalg.norm(here - there[both], axis=1) <= separation
+    return near
+
+
+def twin_clusters(summary: ClusterSummary, chosen: list[int], n_frames: int, min_length: float, separation: float,
+                  min_new: int, eligible: np.ndarray | None = None) -> list[int]:
+    """Clusters left out beside a kept one that can lend it frames (ours), longest first.
+
+    A cluster of at least ``min_length`` of the video, left out because in most of its frames
+    it is near one kept cluster, often holds the same object with other structures (noisy
+    regions split an object's patterns among clusters that overlap in time) and may cover
+    frames the kept one lacks (the object's return, which rejoined only one of them). Those
+    covering at least ``min_new`` such frames are returned; the tracks decide which frames are
+    taken (:func:`trap_core.robust.extend_from_twins`).
+    """
+    spare = np.arange(summary.length.size)
+    if eligible is not None:
+        spare = spare[eligible]
+    spare = spare[(summary.length[spare] >= min_length * n_frames) & ~np.isin(spare, chosen)]
+    twins = []
+    for cluster in spare[np.argsort(-summary.length[spare], kind="stable")].tolist():
+        shares = [_near_frames(summary, np.array([cluster]), kept, separation).sum() for kept in chosen]
+        if not shares or max(shares) < summary.length[cluster] / 2:
+            continue
+        kept = chosen[int(np.argmax(shares))]
+        if np.count_nonzero(summary.covered[cluster] & ~summary.covered[kept]) >= min_new:
+            twins.append(cluster)
+    return twins

@@ -8,13 +8,15 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from trap_core.clustering import (ClusterSummary, Hierarchy, Track, Trajectories, build_track, cluster_patterns,
-                                  observed_paths, pattern_distances, select_clusters, summarise, trajectories)
+                                  observed_paths, pattern_distances, select_clusters, summarise, trajectories,
+                                  twin_clusters)
 from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed, continue_to_border,
-                              drop_shared_stretches, drop_still_regions, fill_gaps, grow_boxes, merge_duplicates,
+                              drop_shared_stretches, drop_still_regions, extend_from_twins, fill_gaps, grow_boxes,
+                              merge_duplicates,
                               pattern_sizes, rejoin_fragments, separate_groups, split_mixed, world_speed)
 
 
@@ -94,21 +96,31 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         # and mostly seen whole (a large region cut by the view "moves" as the camera pans)
         moving = ((cluster_world_speed(summary, transforms, params.tau) >= still_below)
                   & (border_share(mined, clustered, labels, width, height) <= 0.5))
+    own_frames = robust and params.own_frames
     selected = select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
-                               params.min_track_length, params.separation, eligible=moving)
+                               params.min_track_length, params.separation, eligible=moving, own_frames=own_frames)
     all_labels = np.full(mined.n_st, -1, dtype=np.int64)
     all_labels[clustered] = labels
-    tracks = [build_track(mined, all_labels, cluster, track_id, graphs, params.core_share if robust else 0.0)
-              for track_id, cluster in enumerate(selected, start=1)]
     lag = max(1, params.tau // 5)  # frames either side where a region is looked for again
-    if robust and params.still_regions and params.core_share > 0:
-        tracks = [drop_still_regions(t, mined, all_labels, graphs, transforms, params.core_share, lag) for t in tracks]
-    if robust and params.grow:
-        tracks = [grow_boxes(t, graphs, transforms, lag=lag, max_gap=2 * lag) for t in tracks]
-    if robust and params.fill_gaps:
-        tracks = [fill_gaps(t, params.tau) for t in tracks]
+
+    def track_of(cluster: int, track_id: int) -> Track:
+        """The cluster's boxes, with the rules in effect that look at one track alone."""
+        built = build_track(mined, all_labels, cluster, track_id, graphs, params.core_share if robust else 0.0)
+        if robust and params.still_regions and params.core_share > 0:
+            built = drop_still_regions(built, mined, all_labels, graphs, transforms, params.core_share, lag)
+        if robust and params.grow:
+            built = grow_boxes(built, graphs, transforms, lag=lag, max_gap=2 * lag)
+        if robust and params.fill_gaps:
+            built = fill_gaps(built, params.tau)
+        return built
+
+    tracks = [track_of(cluster, track_id) for track_id, cluster in enumerate(selected, start=1)]
     if robust and params.one_track:
         tracks = merge_duplicates(tracks, params.tau)
+    if own_frames and not params.n_objects:
+        twins = twin_clusters(summary, selected, n_frames, params.min_track_length, params.separation, params.tau,
+                              moving)
+        tracks = extend_from_twins(tracks, [track_of(cluster, 0) for cluster in twins], params.tau, params.size_jump)
     if robust and (params.size_jump or params.groups):
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=params.groups, patience=params.tau)

@@ -46,6 +46,35 @@ def merge_duplicates(tracks: Sequence[Track], min_common: int, min_iou: float = 
     return [dataclasses.replace(t, track_id=i) for i, t in enumerate(merged, start=1)]
 
 
+def extend_from_twins(tracks: Sequence[Track], twins: Sequence[Track], min_common: int, size_jump: float,
+                      min_iou: float = 0.5, min_inside: float = 0.9, min_share: float = 0.8) -> list[Track]:
+    """Tracks with frames they lack taken from twin tracks (those of
+    :func:`trap_core.clustering.twin_clusters`).
+
+    A twin lends frames to the one track it holds the same object as (the test of
+    :func:`merge_duplicates`), and only frames where that track has no box, where its box is
+    at most ``size_jump`` times the track's usual width and height (0: any size; a twin on two
+    look-alikes moving together has the pair's box) and where it does not repeat another
+    track's box (IoU at least ``min_iou``: a twin that followed a look-alike for a while).
+    """
+    out = list(tracks)
+    for twin in twins:
+        same = [k for k, t in enumerate(out) if _same_object(t, twin, min_common, min_iou, min_inside, min_share)]
+        if len(same) != 1:
+            continue
+        kept = out[same[0]]
+        lend = ~np.isin(twin.frames, kept.frames)
+        if size_jump:
+            lend &= np.all(twin.boxes[:, 2:4] <= size_jump * np.median(kept.boxes[:, 2:4], axis=0), axis=1)
+        for k, other in enumerate(out):
+            if k != same[0]:
+                common, in_twin, in_other = np.intersect1d(twin.frames, other.frames, assume_unique=True,
+                                                           return_indices=True)
+                lend[in_twin[box_iou(twin.boxes[in_twin], other.boxes[in_other]) >= min_iou]] = False
+        out[same[0]] = _union(kept, in_rows(twin, lend))
+    return out
+
+
 def _same_object(a: Track, b: Track, min_common: int, min_iou: float, min_inside: float, min_share: float) -> bool:
     common, in_a, in_b = np.intersect1d(a.frames, b.frames, assume_unique=True, return_indices=True)
     if common.size < min_common:

@@ -16,8 +16,8 @@ from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed, continue_to_border,
                               drop_shared_stretches, drop_still_regions, extend_from_twins, fill_gaps, grow_boxes,
-                              merge_duplicates,
-                              pattern_sizes, rejoin_fragments, separate_groups, split_mixed, world_speed)
+                              merge_duplicates, pattern_sizes, rejoin_fragments, separate_groups, split_mixed,
+                              world_speed)
 
 
 @dataclass

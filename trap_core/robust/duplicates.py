@@ -16,6 +16,9 @@ go on with the other object, and its track then repeats that object's boxes for 
 end, or until the path comes back to its own object. :func:`drop_shared_stretches` takes such a
 stretch away from the track whose motion turns where the two meet or part (the other went on as
 it was going).
+
+An object's track can lack frames that another cluster of the same object holds (its return,
+rejoined to that cluster only): :func:`extend_from_twins` lends them.
 """
 from __future__ import annotations
 
@@ -68,7 +71,7 @@ def extend_from_twins(tracks: Sequence[Track], twins: Sequence[Track], min_commo
             lend &= np.all(twin.boxes[:, 2:4] <= size_jump * np.median(kept.boxes[:, 2:4], axis=0), axis=1)
         for k, other in enumerate(out):
             if k != same[0]:
-                common, in_twin, in_other = np.intersect1d(twin.frames, other.frames, assume_unique=True,
+                _, in_twin, in_other = np.intersect1d(twin.frames, other.frames, assume_unique=True,
                                                            return_indices=True)
                 lend[in_twin[box_iou(twin.boxes[in_twin], other.boxes[in_other]) >= min_iou]] = False
         out[same[0]] = _union(kept, in_rows(twin, lend))

@@ -143,12 +143,14 @@ def twin_clusters(summary: ClusterSummary, chosen: list[int], n_frames: int, min
     if eligible is not None:
         spare = spare[eligible]
     spare = spare[(summary.length[spare] >= min_length * n_frames) & ~np.isin(spare, chosen)]
+    spare = spare[np.argsort(-summary.length[spare], kind="stable")]
+    if not chosen or not spare.size:
+        return []
+    near = np.array([_near_frames(summary, spare, kept, separation).sum(axis=1) for kept in chosen])  # (kept, spare)
     twins = []
-    for cluster in spare[np.argsort(-summary.length[spare], kind="stable")].tolist():
-        shares = [_near_frames(summary, np.array([cluster]), kept, separation).sum() for kept in chosen]
-        if not shares or max(shares) < summary.length[cluster] / 2:
-            continue
-        kept = chosen[int(np.argmax(shares))]
-        if np.count_nonzero(summary.covered[cluster] & ~summary.covered[kept]) >= min_new:
+    for column, cluster in enumerate(spare.tolist()):
+        beside = int(np.argmax(near[:, column]))
+        if near[beside, column] >= summary.length[cluster] / 2 and np.count_nonzero(
+                summary.covered[cluster] & ~summary.covered[chosen[beside]]) >= min_new:
             twins.append(cluster)
     return twins

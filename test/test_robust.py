@@ -1,6 +1,8 @@
 """Beyond the paper: one-to-one linking, camera motion, fragment rejoining, the whole robust run."""
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -691,3 +693,40 @@ def test_a_track_on_part_of_an_object_joins_the_objects_track() -> None:
     assert len(merged) == 1 and merged[0].frames.tolist() == list(range(100))
     beside = _as_track(2, frames[30:], a[30:] * [1.0, 1.0, 0.5, 0.5] + [45.0, 0, 0, 0])
     assert len(merge_duplicates([whole, beside], min_common=25)) == 2
+
+
+def test_lookalikes_that_traded_objects_where_they_crossed_get_them_back() -> None:
+    """Two look-alikes cross at frame 50 (one going right and down, the other left and up); each
+    track holds one object before and the other after. Side by side look-alikes, and objects that
+    differ, keep their tracks."""
+    from trap_core.robust import swap_at_crossings
+    t = np.arange(100, dtype=float)
+    right = np.column_stack([100 + 2 * t, 200 + 0.5 * t, np.full(100, 40.0), np.full(100, 30.0)])
+    left = np.column_stack([300 - 2 * t, 250 - 0.5 * t, np.full(100, 40.0), np.full(100, 30.0)])
+    traded_a, traded_b = np.vstack([right[:50], left[50:]]), np.vstack([left[:50], right[50:]])
+    frames = np.arange(100)
+    tracks = [_as_track(1, frames, traded_a), _as_track(2, frames, traded_b)]
+    alike = np.ones((2, 2), dtype=bool)
+    out = swap_at_crossings(tracks, 100, 8, alike)
+    assert [o.track_id for o in out] == [1, 2]
+    away = np.abs(t - 50) > 3                    # where they meet, either box will do
+    np.testing.assert_allclose(out[0].boxes[away], right[away])
+    np.testing.assert_allclose(out[1].boxes[away], left[away])
+    differ = swap_at_crossings(tracks, 100, 8, ~alike)
+    np.testing.assert_allclose(differ[0].boxes, traded_a)
+    a, b = _lookalike_pair(100)
+    beside = b - [30.0, 10.0, 0.0, 0.0]          # 30 px to the right of a all along
+    side_by_side = swap_at_crossings([_as_track(1, frames, a), _as_track(2, frames, beside)], 100, 8, alike)
+    np.testing.assert_allclose(side_by_side[0].boxes, a)
+
+
+def test_lookalike_tracks_are_those_of_clusters_with_the_same_structures() -> None:
+    from trap_core.robust import lookalike_tracks
+    labels = np.array([0, 0, 1, 1, 2, -1])        # cluster of each pattern
+    st_pattern = np.array([7, 8, 7, 8, 9, 7])     # its plane pattern
+    weights = np.ones(6)
+    tracks = [_as_track(1, np.arange(3), np.ones((3, 4))), _as_track(2, np.arange(3), np.ones((3, 4))),
+              _as_track(3, np.arange(3), np.ones((3, 4)))]
+    tracks = [dataclasses.replace(t, cluster=c) for t, c in zip(tracks, (0, 1, 2))]
+    alike = lookalike_tracks(tracks, labels, st_pattern, weights, 0.3)
+    assert alike.tolist() == [[True, True, False], [True, True, False], [False, False, True]]

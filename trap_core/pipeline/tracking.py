@@ -16,8 +16,8 @@ from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed, continue_to_border,
                               drop_shared_stretches, drop_still_regions, extend_from_twins, fill_gaps, grow_boxes,
-                              merge_duplicates, pattern_sizes, rejoin_fragments, separate_groups, split_mixed,
-                              world_speed)
+                              lookalike_tracks, merge_duplicates, pattern_sizes, rejoin_fragments, separate_groups,
+                              split_mixed, swap_at_crossings, world_speed)
 
 
 @dataclass
@@ -125,6 +125,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=params.groups, patience=params.tau)
     if robust and params.one_track:
+        alike = lookalike_tracks(tracks, labels, mined.st_pattern[clustered], occurrences, params.rejoin_similarity)
+        tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
         tracks = drop_shared_stretches(tracks, n_frames, params.tau, max(3, params.tau // 2))
     if robust and params.to_border:
         tracks = [continue_to_border(t, n_frames, width, height, max(3, params.tau // 2), 2 * params.tau)

@@ -25,6 +25,18 @@ from trap_core.mining import MiningResult
 from trap_core.robust.camera import map_points
 
 
+def structure_similarity(labels: np.ndarray, st_pattern: np.ndarray, weights: np.ndarray | float = 1.0
+                         ) -> np.ndarray:
+    """How much two clusters (labels 0..C-1) are made of the same structures: for the one that
+    has less in the other, the share of its weight (per pattern ``weights``: its occurrences, say)
+    on plane patterns the other also has. (C, C), symmetric, 1 on the diagonal."""
+    weighted = np.zeros((int(labels.max()) + 1 if labels.size else 0, int(st_pattern.max()) + 1 if st_pattern.size
+                         else 0))
+    np.add.at(weighted, (labels, st_pattern), weights)
+    share = (weighted @ (weighted > 0).T) / np.maximum(weighted.sum(axis=1), 1e-12)[:, None]
+    return np.maximum(share, share.T)
+
+
 def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.ndarray, n_frames: int,
                      min_similarity: float = 0.3, max_overlap: int = 25,
                      at_border: tuple[np.ndarray, np.ndarray] | None = None,
@@ -49,10 +61,7 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     n_clusters = summary.length.size
     if n_clusters < 2:
         return labels
-    weighted = np.zeros((n_clusters, int(st_pattern.max()) + 1))
-    np.add.at(weighted, (labels, st_pattern), 1.0 if weights is None else weights)
-    share = (weighted @ (weighted > 0).T) / np.maximum(weighted.sum(axis=1), 1e-12)[:, None]
-    similarity = np.maximum(share, share.T)  # the share of the fragment that has less in the other
+    similarity = structure_similarity(labels, st_pattern, 1.0 if weights is None else weights)
     covered = summary.covered.astype(np.float32)
     overlap = covered @ covered.T
     start = summary.paths.start

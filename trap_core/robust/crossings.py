@@ -1,0 +1,114 @@
+"""Where look-alikes meet, two tracks can trade objects (ours).
+
+When two look-alike objects overlap, their patterns' occurrences are blends of both, and the
+paths of :func:`trap_core.mining` can leave the meeting each on the other object. Both tracks
+then hold one object before and the other after: no stretch is repeated (that is
+:func:`trap_core.robust.drop_shared_stretches`' case), each track just turns and jumps where
+the objects meet. :func:`swap_at_crossings` gives each track the other's continuation where
+that makes both motions go on as they were going. Only look-alikes trade
+(:func:`lookalike_tracks`): where the objects differ, their patterns already told them apart,
+and two objects that meet and both turn back keep their tracks.
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from trap_core.clustering import Track, in_rows, with_frames
+from trap_core.robust.duplicates import TURN
+from trap_core.robust.rejoin import structure_similarity
+
+
+def lookalike_tracks(tracks: Sequence[Track], labels: np.ndarray, st_pattern: np.ndarray, weights: np.ndarray,
+                     min_similarity: float) -> np.ndarray:
+    """(T, T) whether two tracks' clusters are made of the same structures: the
+    :func:`trap_core.robust.structure_similarity` of the patterns with cluster ``labels`` (-1:
+    none), plane pattern ``st_pattern`` and ``weights`` (occurrences), at least
+    ``min_similarity``."""
+    clusters = np.unique([t.cluster for t in tracks])
+    member = np.flatnonzero(np.isin(labels, clusters))
+    similarity = structure_similarity(np.searchsorted(clusters, labels[member]), st_pattern[member], weights[member])
+    slot = np.searchsorted(clusters, [t.cluster for t in tracks])
+    return similarity[np.ix_(slot, slot)] >= min_similarity
+
+
+def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike: np.ndarray) -> list[Track]:
+    """Tracks with their continuations exchanged where two of them meet and trade objects.
+
+    Two tracks meet while their box centres are closer than the smaller of their usual sizes
+    (the larger side's median). At each frame ``k`` of a meeting, a pairing of what comes before
+    ``k`` with what comes after is scored by how much it breaks each track's motion: the change
+    of velocity between straight lines fitted (robustly) to the centres over ``window`` frames
+    before and after, plus the gap between the two lines at the cut divided by ``window`` (a
+    jump spread over the window), summed over both tracks. The continuations are exchanged at
+    the frame where that helps most, if there the tracks' own pairing breaks their motion by
+    more than ``TURN`` times the smaller size per frame (a turn, not jitter) and the exchanged
+    pairing does not, by at most half as much (both go on as they were going). Only tracks
+    ``alike[a, b]`` (:func:`lookalike_tracks`) trade.
+    """
+    out = list(tracks)
+    centres = np.full((len(out), n_frames, 2), np.nan)
+    sizes = np.zeros(len(out))
+    for slot, t in enumerate(out):
+        centres[slot, t.frames] = t.boxes[:, :2] + t.boxes[:, 2:4] / 2
+        sizes[slot] = float(np.median(np.max(t.boxes[:, 2:4], axis=1))) if len(t) else 0.0
+    for a in range(len(out)):
+        for b in range(a + 1, len(out)):
+            if not alike[a, b]:
+                continue
+            size = min(sizes[a], sizes[b])
+            close = np.linalg.norm(centres[a] - centres[b], axis=1) < size  # NaN where either is absent
+            edges = np.diff(np.concatenate(([0], close.astype(np.int8), [0])))
+            for start, stop in zip(np.flatnonzero(edges == 1).tolist(), np.flatnonzero(edges == -1).tolist()):
+                cut = _best_cut(centres[a], centres[b], range(start, stop + 1), window, TURN * size)
+                if cut is None:
+                    continue
+                out[a], out[b] = _exchanged(out[a], out[b], cut)
+                centres[[a, b], cut:] = centres[[b, a], cut:]
+    return out
+
+
+def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, least: float) -> int | None:
+    """Frame of ``cuts`` where exchanging the centre paths' continuations helps most, or None."""
+    best, best_gain = None, 0.0
+    for cut in cuts:
+        before = [_line(path, np.arange(max(cut - window, 0), cut)) for path in (first, second)]
+        after = [_line(path, np.arange(cut, min(cut + window, len(path)))) for path in (first, second)]
+        if any(line is None for line in before + after):
+            continue
+        kept = _break(before[0], after[0], cut, window) + _break(before[1], after[1], cut, window)
+        exchanged = _break(before[0], after[1], cut, window) + _break(before[1], after[0], cut, window)
+        if exchanged <= least < kept and 2 * exchanged <= kept and kept - exchanged > best_gain:
+            best, best_gain = cut, kept - exchanged
+    return best
+
+
+def _break(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, np.ndarray], cut: int,
+           window: int) -> float:
+    """How much going from the line ``before`` (velocity, position at frame 0) to the line
+    ``after`` at ``cut`` breaks a straight motion: the change of velocity, and the jump between
+    the lines spread over ``window`` frames."""
+    (v0, p0), (v1, p1) = before, after
+    at = cut - 0.5
+    return float(np.linalg.norm(v1 - v0) + np.linalg.norm((p1 + v1 * at) - (p0 + v0 * at)) / window)
+
+
+def _line(centres: np.ndarray, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """Velocity and position at frame 0 of the Theil-Sen line through the centres seen in
+    ``frames`` (None with fewer than three): medians of the pairwise slopes and of the offsets,
+    so that one stray box does not make a turn."""
+    seen = frames[~np.isnan(centres[frames, 0])]
+    if seen.size < 3:
+        return None
+    first, second = np.triu_indices(seen.size, k=1)
+    slopes = (centres[seen[second]] - centres[seen[first]]) / (seen[second] - seen[first])[:, None]
+    velocity = np.median(slopes, axis=0)
+    return velocity, np.median(centres[seen] - velocity * seen[:, None], axis=0)
+
+
+def _exchanged(a: Track, b: Track, cut: int) -> tuple[Track, Track]:
+    """``a`` before ``cut`` with ``b`` from ``cut`` on, and the other way round; ids stay."""
+    b_after, a_after = in_rows(b, b.frames >= cut), in_rows(a, a.frames >= cut)
+    return (with_frames(in_rows(a, a.frames < cut), b_after.frames, b_after.boxes, b_after.score, b_after.points),
+            with_frames(in_rows(b, b.frames < cut), a_after.frames, a_after.boxes, a_after.score, a_after.points))

@@ -118,6 +118,20 @@ def test_rejoin_joins_same_structure_across_a_gap_but_not_overlapping_lookalikes
     assert np.unique(different).size == 3
 
 
+def test_rejoin_never_joins_fragments_seen_at_once_in_different_places() -> None:
+    """A (frames 0-49) and B (45-99, then C from 120) are look-alikes seen together in frames
+    45-49, 290 px apart: two objects, even through C. A fragment that overlaps A where A is
+    joins it."""
+    line = lambda start, n, y: np.column_stack([np.arange(start, start + n) * 2.0, np.full(n, y)])  # noqa: E731
+    paths = _paths([(0, line(0, 50, 10)), (45, line(45, 55, 300)), (120, line(120, 31, 300))])
+    st_pattern = np.array([5, 5, 5])
+    assert np.unique(rejoin_fragments(np.arange(3), paths, st_pattern, 151)).size == 1  # without the test: one
+    apart = rejoin_fragments(np.arange(3), paths, st_pattern, 151, max_apart=40.0)
+    assert apart[1] == apart[2] != apart[0]
+    paths = _paths([(0, line(0, 50, 10)), (45, line(45, 55, 12))])
+    assert np.unique(rejoin_fragments(np.arange(2), paths, st_pattern[:2], 100, max_apart=40.0)).size == 1
+
+
 def test_rejoin_continues_a_fragment_right_where_another_ended_whatever_its_structures() -> None:
     """Noise changed every structure the object shows at frame 30; the new fragment starts where
     the old one's motion puts it. One 30 px off, or starting 10 frames later, is not adjacent."""

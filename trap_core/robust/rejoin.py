@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from trap_core.clustering import Trajectories, summarise
+from trap_core.clustering import ClusterSummary, Trajectories, summarise
 from trap_core.mining import MiningResult
 from trap_core.robust.camera import map_points
 
@@ -41,7 +41,7 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
                      min_similarity: float = 0.3, max_overlap: int = 25,
                      at_border: tuple[np.ndarray, np.ndarray] | None = None,
                      weights: np.ndarray | None = None, transforms: np.ndarray | None = None,
-                     adjacent_gap: int = 0, adjacent_reach: float = 0.0) -> np.ndarray:
+                     adjacent_gap: int = 0, adjacent_reach: float = 0.0, max_apart: float = np.inf) -> np.ndarray:
     """Cluster labels (0..C'-1) after joining fragments of the same object.
 
     Candidate pairs and their costs are computed once on the fragments; they are then taken
@@ -55,6 +55,8 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     starts at most ``adjacent_gap`` frames after another ends, at most ``adjacent_reach`` px
     from where its motion puts it, is a candidate whatever its structures: an object does not
     jump, but a noisy one can change every structure it shows from one frame to the next.
+    Groups seen in the same frames more than ``max_apart`` px apart (on average over those
+    frames) are two objects, whatever else they share: they are not joined.
     """
     labels = np.unique(labels, return_inverse=True)[1]
     summary = summarise(labels, paths, np.ones(labels.size), n_frames)
@@ -80,11 +82,32 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     group_covered = summary.covered.copy()
     for pair in np.argsort(costs, kind="stable"):
         a, b = group[earlier[pair]], group[later[pair]]
-        if a == b or int((group_covered[a] & group_covered[b]).sum()) > max_overlap:
+        both = np.flatnonzero(group_covered[a] & group_covered[b])
+        if a == b or both.size > max_overlap:
+            continue
+        if both.size and _apart(summary, group == a, group == b, both) > max_apart:
             continue
         group[group == b] = a
         group_covered[a] |= group_covered[b]
     return np.unique(group[labels], return_inverse=True)[1]
+
+
+def _apart(summary: ClusterSummary, first: np.ndarray, second: np.ndarray, frames: np.ndarray) -> float:
+    """Mean distance, over ``frames``, between the mean positions of the clusters in the masks
+    ``first`` and ``second`` that cover each frame (every frame is covered by both)."""
+    return float(np.mean(np.linalg.norm(_mean_position(summary, first, frames)
+                                        - _mean_position(summary, second, frames), axis=1)))
+
+
+def _mean_position(summary: ClusterSummary, members: np.ndarray, frames: np.ndarray) -> np.ndarray:
+    """(len(frames), 2) mean position of the clusters ``members`` (a mask) covering each frame."""
+    total = np.zeros((frames.size, 2))
+    count = np.zeros(frames.size)
+    for cluster in np.flatnonzero(members):
+        seen = summary.covered[cluster, frames]
+        total[seen] += summary.paths.of(cluster)[frames[seen] - summary.paths.start[cluster]]
+        count[seen] += 1
+    return total / count[:, None]
 
 
 def _prediction_error(paths: Trajectories, earlier: int, later: int, transforms: np.ndarray | None = None) -> float:

@@ -26,7 +26,8 @@ def _block_centres(rgb: np.ndarray) -> np.ndarray:
     return rgb[3::8, 3::8].astype(int)
 
 
-@pytest.mark.parametrize("encoding", ["rgb8", "bgr8", "rgba8", "bgra8"])
+@pytest.mark.parametrize("encoding", ["rgb8", "bgr8", "rgba8", "bgra8", "8uc3", "8uc4", "rgb16", "bgr16", "rgba16",
+                                      "bgra16"])
 def test_colour_encodings_are_exact(tmp_path: Path, encoding: str) -> None:
     frames = _frames()
     write_image_bag(tmp_path / "bag", frames, encoding=encoding)
@@ -39,7 +40,7 @@ def test_colour_encodings_are_exact(tmp_path: Path, encoding: str) -> None:
         np.testing.assert_array_equal(frame.rgb, original)
 
 
-@pytest.mark.parametrize("encoding", ["mono8", "mono16"])
+@pytest.mark.parametrize("encoding", ["mono8", "mono16", "8uc1", "16uc1"])
 def test_mono_encodings_give_grey_rgb(tmp_path: Path, encoding: str) -> None:
     frames = _frames()
     write_image_bag(tmp_path / "bag", frames, encoding=encoding)
@@ -50,7 +51,7 @@ def test_mono_encodings_give_grey_rgb(tmp_path: Path, encoding: str) -> None:
                 np.testing.assert_array_equal(frame.rgb[..., channel], grey)
 
 
-@pytest.mark.parametrize("encoding", ["bayer_rggb8", "bayer_bggr8", "bayer_gbrg8", "bayer_grbg8"])
+@pytest.mark.parametrize("encoding", [f"bayer_{p}{bits}" for p in ("rggb", "bggr", "gbrg", "grbg") for bits in (8, 16)])
 def test_bayer_encodings_demosaic_to_the_right_colours(tmp_path: Path, encoding: str) -> None:
     frames = _frames()
     write_image_bag(tmp_path / "bag", frames, encoding=encoding)
@@ -58,6 +59,28 @@ def test_bayer_encodings_demosaic_to_the_right_colours(tmp_path: Path, encoding:
         for frame, original in zip(stream, frames):
             # Inside flat blocks demosaicing is exact; a swapped R/B pattern would not be.
             np.testing.assert_allclose(_block_centres(frame.rgb), _block_centres(original), atol=2)
+
+
+@pytest.mark.parametrize("encoding", ["yuv422", "yuv422_yuy2", "nv21"])
+def test_chroma_subsampled_encodings_keep_the_colours(tmp_path: Path, encoding: str) -> None:
+    frames = _frames()  # 8x8 blocks: no pixel pair (2x2 square for nv21) straddles two colours
+    write_image_bag(tmp_path / "bag", frames, encoding=encoding)
+    with open_image_stream(tmp_path / "bag") as stream:
+        for frame, original in zip(stream, frames):
+            np.testing.assert_allclose(frame.rgb.astype(int), original.astype(int), atol=3)
+
+
+def test_chroma_subsampled_byte_orders() -> None:
+    """ROS's yuv422 is U Y V Y, yuv422_yuy2 is Y U Y V, nv21 has V before U: a bright and a dark
+    grey pixel, and a reddish square (V high, U low)."""
+    grey = {"yuv422": [128, 200, 128, 50], "yuv422_yuy2": [200, 128, 50, 128]}
+    for encoding, payload in grey.items():
+        rgb = decode_image(encoding, 1, 2, 4, np.array(payload, dtype=np.uint8))
+        assert rgb[0, 0, 0] > 180 and rgb[0, 1, 0] < 60 and np.ptp(rgb[0, 0]) <= 2, encoding
+    red = decode_image("nv21", 2, 2, 2, np.array([120] * 4 + [200, 60], dtype=np.uint8))[0, 0]
+    assert red[0] > 200 and red[2] < 60
+    with pytest.raises(BagError, match="size must be even"):
+        decode_image("yuv422", 1, 3, 6, np.zeros(6, dtype=np.uint8))
 
 
 @pytest.mark.parametrize("fmt,tolerance", [("png", 0), ("jpeg", 12)])
@@ -184,8 +207,8 @@ def test_corrupt_ros1_header(tmp_path: Path) -> None:
 
 def test_decode_rejects_bad_headers() -> None:
     payload = np.zeros(12, dtype=np.uint8)
-    with pytest.raises(BagError, match="unsupported image encoding 'yuv422'"):
-        decode_image("yuv422", 2, 2, 4, payload)
+    with pytest.raises(BagError, match="unsupported image encoding '32fc1'"):
+        decode_image("32fc1", 2, 2, 4, payload)
     with pytest.raises(BagError, match="height x step needs 24"):
         decode_image("rgb8", 2, 4, 12, payload)
     with pytest.raises(BagError, match="step 4 is shorter than a row"):
@@ -206,8 +229,6 @@ def test_decode_handles_padded_rows_and_big_endian() -> None:
 def test_encoding_list_is_covered() -> None:
     frame = _frames(count=1)[0]
     for encoding in SUPPORTED_ENCODINGS:
-        if encoding in ("8uc1", "16uc1"):
-            continue
         data, step = encode_image(frame, encoding)
         assert decode_image(encoding, frame.shape[0], frame.shape[1], step, data).shape == frame.shape
 
@@ -218,13 +239,13 @@ def test_unsupported_encoding_in_bag(tmp_path: Path) -> None:
     store = get_typestore(Stores.ROS2_JAZZY)
     Image, Header, Time = (store.types[n] for n in ("sensor_msgs/msg/Image", "std_msgs/msg/Header",
                                                      "builtin_interfaces/msg/Time"))
-    with Writer(tmp_path / "yuv", version=9) as writer:
+    with Writer(tmp_path / "depth", version=9) as writer:
         connection = writer.add_connection("/cam", Image.__msgtype__, typestore=store)
         message = Image(header=Header(stamp=Time(sec=1, nanosec=0), frame_id="c"), height=2, width=2,
-                        encoding="yuv422", is_bigendian=0, step=4, data=np.zeros(8, dtype=np.uint8))
+                        encoding="32FC1", is_bigendian=0, step=8, data=np.zeros(16, dtype=np.uint8))
         writer.write(connection, 1, store.serialize_cdr(message, Image.__msgtype__))
-    with pytest.raises(BagError, match="frame 0 of /cam: unsupported image encoding 'yuv422'"):
-        with open_image_stream(tmp_path / "yuv") as stream:
+    with pytest.raises(BagError, match="frame 0 of /cam: unsupported image encoding '32FC1'"):
+        with open_image_stream(tmp_path / "depth") as stream:
             list(stream)
 
 

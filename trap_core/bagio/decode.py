@@ -11,40 +11,53 @@ import numpy as np
 from trap_core.bagio.errors import BagError
 
 # OpenCV names Bayer patterns by the second row's first two pixels, ROS by the first row's;
-# this table is the mapping cv_bridge uses.
+# this table is the mapping cv_bridge uses (the 16-bit patterns keep their 8 high bits first).
 _BAYER_TO_RGB = {
-    "bayer_rggb8": cv2.COLOR_BayerBG2RGB,
-    "bayer_bggr8": cv2.COLOR_BayerRG2RGB,
-    "bayer_gbrg8": cv2.COLOR_BayerGR2RGB,
-    "bayer_grbg8": cv2.COLOR_BayerGB2RGB,
+    f"bayer_{pattern}{bits}": code
+    for pattern, code in (("rggb", cv2.COLOR_BayerBG2RGB), ("bggr", cv2.COLOR_BayerRG2RGB),
+                          ("gbrg", cv2.COLOR_BayerGR2RGB), ("grbg", cv2.COLOR_BayerGB2RGB))
+    for bits in (8, 16)
 }
-# encoding -> (channels, bytes per channel)
+# encoding -> (channels, bytes per channel, conversion to RGB after 16-bit samples keep their
+# high byte; None: already RGB). "8uc3"/"8uc4" are taken as BGR(A), as cv_bridge does; ROS's
+# "yuv422" is UYVY and "yuv422_yuy2" YUYV; "nv21" is a Y plane then interleaved V, U at half size.
 _LAYOUT = {
-    "rgb8": (3, 1), "bgr8": (3, 1), "rgba8": (4, 1), "bgra8": (4, 1),
-    "mono8": (1, 1), "8uc1": (1, 1), "mono16": (1, 2), "16uc1": (1, 2),
-    **{name: (1, 1) for name in _BAYER_TO_RGB},
+    "rgb8": (3, 1, None), "bgr8": (3, 1, cv2.COLOR_BGR2RGB), "rgba8": (4, 1, cv2.COLOR_RGBA2RGB),
+    "bgra8": (4, 1, cv2.COLOR_BGRA2RGB), "8uc3": (3, 1, cv2.COLOR_BGR2RGB), "8uc4": (4, 1, cv2.COLOR_BGRA2RGB),
+    "rgb16": (3, 2, None), "bgr16": (3, 2, cv2.COLOR_BGR2RGB), "rgba16": (4, 2, cv2.COLOR_RGBA2RGB),
+    "bgra16": (4, 2, cv2.COLOR_BGRA2RGB),
+    "mono8": (1, 1, cv2.COLOR_GRAY2RGB), "8uc1": (1, 1, cv2.COLOR_GRAY2RGB), "mono16": (1, 2, cv2.COLOR_GRAY2RGB),
+    "16uc1": (1, 2, cv2.COLOR_GRAY2RGB),
+    "yuv422": (2, 1, cv2.COLOR_YUV2RGB_UYVY), "yuv422_yuy2": (2, 1, cv2.COLOR_YUV2RGB_YUY2),
+    "nv21": (1, 1, cv2.COLOR_YUV2RGB_NV21),
+    **{name: (1, 2 if name.endswith("16") else 1, code) for name, code in _BAYER_TO_RGB.items()},
 }
+_CHROMA_PAIRS = ("yuv422", "yuv422_yuy2", "nv21")  # chroma shared by two columns (and two rows for nv21)
 SUPPORTED_ENCODINGS: tuple[str, ...] = tuple(sorted(_LAYOUT))
 
 
 def _pixel_rows(data: np.ndarray | bytes, height: int, width: int, step: int, encoding: str,
                 big_endian: bool) -> np.ndarray:
-    """View the payload as (height, width[, channels]) after checking its size against the header."""
+    """View the payload as (rows, width[, channels]) after checking its size against the header
+    (rows: ``height``, or 1.5 ``height`` for nv21's chroma plane); 16-bit samples as uint16."""
     if height <= 0 or width <= 0:
         raise BagError(f"image of size {width}x{height}: nothing to track in an empty frame")
-    channels, depth = _LAYOUT[encoding]
+    if encoding in _CHROMA_PAIRS and (width % 2 or (encoding == "nv21" and height % 2)):
+        raise BagError(f"{encoding} image {width}x{height}: chroma is shared by pixel pairs, the size must be even")
+    channels, depth, _ = _LAYOUT[encoding]
+    rows_needed = height * 3 // 2 if encoding == "nv21" else height
     row_bytes = width * channels * depth
     if step < row_bytes:
         raise BagError(f"{encoding} image {width}x{height}: step {step} is shorter than a row ({row_bytes} bytes)")
     buffer = np.frombuffer(data, dtype=np.uint8)
-    if buffer.size < height * step:
+    if buffer.size < rows_needed * step:
         raise BagError(f"{encoding} image {width}x{height}: {buffer.size} bytes of data, "
-                       f"height x step needs {height * step}")
-    rows = buffer[: height * step].reshape(height, step)[:, :row_bytes]
+                       f"{'1.5 x ' if encoding == 'nv21' else ''}height x step needs {rows_needed * step}")
+    rows = buffer[: rows_needed * step].reshape(rows_needed, step)[:, :row_bytes]
     if depth == 2:
         dtype = np.dtype(">u2" if big_endian else "<u2")
         rows = np.ascontiguousarray(rows).view(dtype)
-    shape = (height, width) if channels == 1 else (height, width, channels)
+    shape = (rows_needed, width) if channels == 1 else (rows_needed, width, channels)
     return rows.reshape(shape)
 
 
@@ -78,19 +91,12 @@ def decode_image(encoding: str, height: int, width: int, step: int, data: np.nda
         raise BagError(f"unsupported image encoding {encoding!r} (supported: {', '.join(SUPPORTED_ENCODINGS)}, "
                        "and sensor_msgs/CompressedImage jpeg/png)")
     pixels = _pixel_rows(data, height, width, step, name, bool(is_bigendian))
-    if name == "rgb8":
-        return np.ascontiguousarray(pixels)
-    if name == "bgr8":
-        return cv2.cvtColor(pixels, cv2.COLOR_BGR2RGB)
-    if name == "rgba8":
-        return cv2.cvtColor(pixels, cv2.COLOR_RGBA2RGB)
-    if name == "bgra8":
-        return cv2.cvtColor(pixels, cv2.COLOR_BGRA2RGB)
-    if name in ("mono16", "16uc1"):
+    if pixels.dtype != np.uint8:
         pixels = (pixels >> 8).astype(np.uint8)
-    if name in _BAYER_TO_RGB:
-        return cv2.cvtColor(np.ascontiguousarray(pixels), _BAYER_TO_RGB[name])
-    return cv2.cvtColor(np.ascontiguousarray(pixels), cv2.COLOR_GRAY2RGB)
+    conversion = _LAYOUT[name][2]
+    if conversion is None:
+        return np.ascontiguousarray(pixels)
+    return cv2.cvtColor(np.ascontiguousarray(pixels), conversion)
 
 
 def decode_compressed(fmt: str, data: np.ndarray | bytes) -> np.ndarray:

@@ -32,29 +32,44 @@ def mosaic(rgb: np.ndarray, encoding: str) -> np.ndarray:
     return raw
 
 
+_FROM_RGB = {"bgr8": cv2.COLOR_RGB2BGR, "8uc3": cv2.COLOR_RGB2BGR, "rgba8": cv2.COLOR_RGB2RGBA,
+             "bgra8": cv2.COLOR_RGB2BGRA, "8uc4": cv2.COLOR_RGB2BGRA, "mono8": cv2.COLOR_RGB2GRAY,
+             "8uc1": cv2.COLOR_RGB2GRAY, "yuv422": cv2.COLOR_RGB2YUV_UYVY, "yuv422_yuy2": cv2.COLOR_RGB2YUV_YUY2}
+# 16-bit encoding -> the 8-bit one whose samples it spreads over 16 bits
+_WIDE = {"rgb16": "rgb8", "bgr16": "bgr8", "rgba16": "rgba8", "bgra16": "bgra8", "mono16": "mono8",
+         "16uc1": "8uc1", **{name[:-1] + "16": name for name in _BAYER_TILES}}
+
+
 def encode_image(rgb: np.ndarray, encoding: str) -> tuple[np.ndarray, int]:
     """Return ``(payload bytes as uint8 array, step)`` of ``rgb`` in a ROS raw encoding."""
-    gray = None
-    if encoding in ("mono8", "mono16"):
-        gray = cv2.cvtColor(rgb, cv2.COLOR_RGB2GRAY)
+    if encoding in _WIDE:
+        narrow, _ = encode_image(rgb, _WIDE[encoding])
+        wide = narrow.astype("<u2") * 257  # 8 bits spread over the full 16-bit range
+        payload = wide.view(np.uint8).reshape(rgb.shape[0], -1)
+        return payload.reshape(-1), payload.shape[1]
     if encoding == "rgb8":
         pixels = rgb
-    elif encoding == "bgr8":
-        pixels = cv2.cvtColor(rgb, cv2.COLOR_RGB2BGR)
-    elif encoding == "rgba8":
-        pixels = cv2.cvtColor(rgb, cv2.COLOR_RGB2RGBA)
-    elif encoding == "bgra8":
-        pixels = cv2.cvtColor(rgb, cv2.COLOR_RGB2BGRA)
-    elif encoding == "mono8":
-        pixels = gray
-    elif encoding == "mono16":
-        pixels = (gray.astype("<u2") * 257).view(np.uint8).reshape(gray.shape[0], -1)
+    elif encoding in _FROM_RGB:
+        pixels = cv2.cvtColor(rgb, _FROM_RGB[encoding])
     elif encoding in _BAYER_TILES:
         pixels = mosaic(rgb, encoding)
+    elif encoding == "nv21":
+        pixels = _nv21(rgb)
     else:
         raise BagError(f"cannot encode frames as {encoding!r}")
-    payload = np.ascontiguousarray(pixels).reshape(rgb.shape[0], -1)
+    payload = np.ascontiguousarray(pixels).reshape(pixels.shape[0], -1)
     return payload.reshape(-1), payload.shape[1]
+
+
+def _nv21(rgb: np.ndarray) -> np.ndarray:
+    """Y plane, then V and U interleaved at half width and height (1.5 x height rows)."""
+    height, width = rgb.shape[:2]
+    planar = cv2.cvtColor(rgb, cv2.COLOR_RGB2YUV_I420).reshape(-1)  # Y, then U, then V planes
+    luma, quarter = height * width, height * width // 4
+    chroma = np.empty(2 * quarter, dtype=np.uint8)
+    chroma[0::2] = planar[luma + quarter:]
+    chroma[1::2] = planar[luma:luma + quarter]
+    return np.concatenate([planar[:luma], chroma]).reshape(height * 3 // 2, width)
 
 
 def compress_image(rgb: np.ndarray, fmt: str, jpeg_quality: int = 90) -> np.ndarray:

@@ -662,6 +662,19 @@ def test_a_stretch_on_another_tracks_object_is_dropped_from_the_track_that_turne
     assert out[1].frames.tolist() == list(range(60)) + list(range(100, 160))
 
 
+def test_a_slow_track_that_goes_back_onto_another_tracks_object_turns() -> None:
+    """At 1 px per frame a track that reverses changes velocity by 2 px per frame, less than a
+    tenth of its box size: still a turn, as it is more than its speed."""
+    from trap_core.robust import drop_shared_stretches
+    t = np.arange(100, dtype=float)
+    other = np.column_stack([220 - t, np.full(100, 220.0), np.full(100, 40.0), np.full(100, 30.0)])
+    slow = np.column_stack([100 + t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    slow[60:] = other[60:] + [1.0, 1.0, 0.0, 0.0]   # from frame 60 on the other one's object
+    frames = np.arange(100)
+    out = drop_shared_stretches([_as_track(1, frames, other), _as_track(2, frames, slow)], 100, 25, 12)
+    assert len(out[0]) == 100 and out[1].frames.tolist() == list(range(60))
+
+
 def test_a_twin_lends_its_track_only_frames_the_track_lacks_at_the_usual_size_and_no_other_tracks() -> None:
     """The kept track holds frames 0-59 of a look-alike; its twin holds the same object over
     frames 0-99, but with the pair's box (twice as wide) in 90-99, and on the other look-alike

@@ -118,7 +118,7 @@ def drop_shared_stretches(tracks: Sequence[Track], n_frames: int, min_frames: in
             least = TURN * float(np.nanmedian(boxes[a, :, 2:4]))
             for start, end in _stretches(box_iou(boxes[a], boxes[b]) >= min_iou, min_frames):
                 ends = [at for at, inside in ((start, start > first), (end + 1, end < last)) if inside]
-                if any(_turn(boxes[a], at, window) > max(_turn(boxes[b], at, window), least) for at in ends):
+                if any(_turns(boxes[a], boxes[b], at, window, least) for at in ends):
                     out[a] = in_rows(out[a], (out[a].frames < start) | (out[a].frames > end))
                     boxes[a, start:end + 1] = np.nan
     return [t for t in out if len(t)]
@@ -137,14 +137,24 @@ def _stretches(same: np.ndarray, min_frames: int) -> list[tuple[int, int]]:
     return [(begin, stop - 1) for begin, stop in runs if stop - begin >= min_frames]
 
 
-def _turn(boxes: np.ndarray, at: int, window: int) -> float:
-    """Change of the box centre's mean velocity at frame ``at``: over ``window`` frames after
-    against ``window`` frames before (px per frame; 0 where a side has fewer than two boxes)."""
+def _turns(own: np.ndarray, other: np.ndarray, at: int, window: int, least: float) -> bool:
+    """Whether the track with boxes ``own`` turns at frame ``at`` and the one with ``other`` does
+    not as much: its velocity change is larger than the other's and than ``least`` or, for a
+    slow track, than its own speed (a slow object that goes back turns by less than ``least``)."""
+    change, speed = _turn(own, at, window)
+    return change > max(_turn(other, at, window)[0], min(least, speed))
+
+
+def _turn(boxes: np.ndarray, at: int, window: int) -> tuple[float, float]:
+    """Change of the box centre's mean velocity at frame ``at`` (over ``window`` frames after
+    against ``window`` frames before) and the larger of the two speeds, in px per frame; 0, 0
+    where a side has fewer than two boxes."""
     centres = boxes[:, :2] + boxes[:, 2:4] / 2
     velocities = []
     for frames in (np.arange(max(at - window, 0), at), np.arange(at, min(at + window, len(boxes)))):
         seen = frames[~np.isnan(centres[frames, 0])]
         if seen.size < 2:
-            return 0.0
+            return 0.0, 0.0
         velocities.append(np.polyfit(seen, centres[seen], 1)[0])
-    return float(np.linalg.norm(velocities[1] - velocities[0]))
+    return (float(np.linalg.norm(velocities[1] - velocities[0])),
+            float(max(np.linalg.norm(velocities[0]), np.linalg.norm(velocities[1]))))

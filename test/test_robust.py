@@ -757,3 +757,31 @@ def test_lookalike_tracks_are_those_of_clusters_with_the_same_structures() -> No
     tracks = [dataclasses.replace(t, cluster=c) for t, c in zip(tracks, (0, 1, 2))]
     alike = lookalike_tracks(tracks, labels, st_pattern, weights, 0.3)
     assert alike.tolist() == [[True, True, False], [True, True, False], [False, False, True]]
+
+
+def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_ended() -> None:
+    """The track holds frames 0-59 of an object moving right; cluster 0 goes on from frame 62
+    where that motion puts it, cluster 1 starts at the same time 185 px away, cluster 2 goes on
+    in the right place but repeats the other track's boxes from frame 80."""
+    from trap_core.clustering import summarise
+    from trap_core.robust import continue_tracks
+    t = np.arange(100, dtype=float)
+    boxes = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    centres = boxes[:, :2] + boxes[:, 2:4] / 2
+    far = centres + [0.0, 185.0]
+    paths = _paths([(62, centres[62:]), (62, far[62:]), (62, centres[62:])])
+    summary = summarise(np.array([0, 1, 2]), paths, np.ones(3), 100)
+    other = boxes + [0.0, 185.0, 0.0, 0.0]
+    built = {0: _as_track(0, np.arange(62, 100), boxes[62:]), 1: _as_track(0, np.arange(62, 100), other[62:])}
+    frames = np.arange(100)
+    cut = _as_track(1, frames[:60], boxes[:60])
+    far_track = _as_track(2, frames, other)
+    out = continue_tracks([cut, far_track], summary, np.array([0, 1]), 100, 12, 40.0, built.__getitem__)
+    assert out[0].frames.tolist() == list(range(60)) + list(range(62, 100))
+    np.testing.assert_allclose(out[0].boxes[60:], boxes[62:])
+    assert len(out[1]) == 100
+    repeating = boxes.copy()
+    repeating[80:] = other[80:]
+    built[2] = _as_track(0, np.arange(62, 100), repeating[62:])
+    out = continue_tracks([cut, far_track], summary, np.array([2]), 100, 12, 40.0, built.__getitem__)
+    assert out[0].frames.tolist() == list(range(60)) + list(range(62, 80))

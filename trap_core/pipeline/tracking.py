@@ -15,9 +15,9 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed, continue_to_border,
-                              drop_shared_stretches, drop_still_regions, extend_from_twins, fill_gaps, grow_boxes,
-                              lookalike_tracks, merge_duplicates, pattern_sizes, rejoin_fragments, separate_groups,
-                              split_mixed, swap_at_crossings, world_speed)
+                              continue_tracks, drop_shared_stretches, drop_still_regions, extend_from_twins, fill_gaps,
+                              grow_boxes, lookalike_tracks, merge_duplicates, pattern_sizes, rejoin_fragments,
+                              separate_groups, split_mixed, swap_at_crossings, world_speed)
 
 
 @dataclass
@@ -129,6 +129,9 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         alike = lookalike_tracks(tracks, labels, mined.st_pattern[clustered], occurrences, params.rejoin_similarity)
         tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
         tracks = drop_shared_stretches(tracks, n_frames, params.tau, max(3, params.tau // 2))
+        spare = np.flatnonzero((summary.length >= params.tau) & (True if moving is None else moving))
+        tracks = continue_tracks(tracks, summary, spare[~np.isin(spare, selected)], n_frames, max(3, params.tau // 2),
+                                 params.eps, lambda cluster: track_of(cluster, 0))
     if robust and params.to_border:
         tracks = [continue_to_border(t, n_frames, width, height, max(3, params.tau // 2), 2 * params.tau)
                   for t in tracks]

@@ -3,6 +3,7 @@ track boxes without the background and where objects meet."""
 
 from trap_core.robust.borders import continue_to_border
 from trap_core.robust.camera import camera_transforms, cluster_world_speed, world_speed
+from trap_core.robust.continuation import continue_tracks
 from trap_core.robust.crossings import lookalike_tracks, swap_at_crossings
 from trap_core.robust.duplicates import drop_shared_stretches, extend_from_twins, merge_duplicates
 from trap_core.robust.extent import grow_boxes
@@ -13,6 +14,6 @@ from trap_core.robust.rejoin import border_contacts, border_share, reaches_borde
 from trap_core.robust.still import drop_still_regions
 
 __all__ = ["border_contacts", "border_share", "camera_transforms", "cluster_world_speed", "continue_to_border",
-           "drop_shared_stretches", "drop_still_regions", "extend_from_twins", "fill_gaps", "grow_boxes",
-           "lookalike_tracks", "merge_duplicates", "pattern_sizes", "reaches_border", "rejoin_fragments",
+           "continue_tracks", "drop_shared_stretches", "drop_still_regions", "extend_from_twins", "fill_gaps",
+           "grow_boxes", "lookalike_tracks", "merge_duplicates", "pattern_sizes", "reaches_border", "rejoin_fragments",
            "separate_groups", "split_mixed", "swap_at_crossings", "world_speed"]

@@ -17,6 +17,7 @@ import numpy as np
 
 from trap_core.clustering import Track, in_rows, with_frames
 from trap_core.robust.duplicates import TURN
+from trap_core.robust.motion import straight_line
 from trap_core.robust.rejoin import structure_similarity
 
 
@@ -73,8 +74,8 @@ def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, l
     """Frame of ``cuts`` where exchanging the centre paths' continuations helps most, or None."""
     best, best_gain = None, 0.0
     for cut in cuts:
-        before = [_line(path, np.arange(max(cut - window, 0), cut)) for path in (first, second)]
-        after = [_line(path, np.arange(cut, min(cut + window, len(path)))) for path in (first, second)]
+        before = [straight_line(path, np.arange(max(cut - window, 0), cut)) for path in (first, second)]
+        after = [straight_line(path, np.arange(cut, min(cut + window, len(path)))) for path in (first, second)]
         if any(line is None for line in before + after):
             continue
         kept = _break(before[0], after[0], cut, window) + _break(before[1], after[1], cut, window)
@@ -92,19 +93,6 @@ def _break(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, np.nd
     (v0, p0), (v1, p1) = before, after
     at = cut - 0.5
     return float(np.linalg.norm(v1 - v0) + np.linalg.norm((p1 + v1 * at) - (p0 + v0 * at)) / window)
-
-
-def _line(centres: np.ndarray, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-    """Velocity and position at frame 0 of the Theil-Sen line through the centres seen in
-    ``frames`` (None with fewer than three): medians of the pairwise slopes and of the offsets,
-    so that one stray box does not make a turn."""
-    seen = frames[~np.isnan(centres[frames, 0])]
-    if seen.size < 3:
-        return None
-    first, second = np.triu_indices(seen.size, k=1)
-    slopes = (centres[seen[second]] - centres[seen[first]]) / (seen[second] - seen[first])[:, None]
-    velocity = np.median(slopes, axis=0)
-    return velocity, np.median(centres[seen] - velocity * seen[:, None], axis=0)
 
 
 def _exchanged(a: Track, b: Track, cut: int) -> tuple[Track, Track]:

@@ -24,8 +24,8 @@ from trap_core.robust.rejoin import structure_similarity
 def lookalike_tracks(tracks: Sequence[Track], labels: np.ndarray, st_pattern: np.ndarray, weights: np.ndarray,
                      min_similarity: float) -> np.ndarray:
     """(T, T) whether two tracks' clusters are made of the same structures: the
-    :func:`trap_core.robust.structure_similarity` of the patterns with cluster ``labels`` (-1:
-    none), plane pattern ``st_pattern`` and ``weights`` (occurrences), at least
+    :func:`trap_core.robust.rejoin.structure_similarity` of the patterns with cluster
+    ``labels`` (-1: none), plane pattern ``st_pattern`` and ``weights`` (occurrences), at least
     ``min_similarity``."""
     clusters = np.unique([t.cluster for t in tracks])
     member = np.flatnonzero(np.isin(labels, clusters))

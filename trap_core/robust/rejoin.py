@@ -15,6 +15,8 @@ is a candidate even without shared structures (noise can change them all at once
 fragments' border contacts, a fragment that left the view (its last box at the image border)
 continues only one that enters it (first box at the border), and one that vanished inside
 the view (occluded) only one that appears inside it: an object comes back the way it went.
+Two groups seen at once in different places (further apart than the linking distance over the
+frames both cover) are two objects and are never joined, not even through a later fragment.
 """
 from __future__ import annotations
 

@@ -146,6 +146,14 @@ def test_node_attributes() -> None:
     assert graph.label[right] == 3 * 16
 
 
+def test_grey_regions_get_finer_labels_than_colours() -> None:
+    """A mono camera's regions are all grey: 100 and 120 share a level of four, not of sixteen."""
+    from trap_core.rag import colour_label
+    grey = colour_label(np.array([[100.0, 100.0, 100.0], [120.0, 120.0, 120.0]]), 4)
+    assert grey.tolist() == [64 + 6, 64 + 7]
+    assert colour_label(np.array([[100.0, 100.0, 101.0], [250.0, 10.0, 10.0]]), 4).tolist() == [21, 48]
+
+
 def test_bad_input() -> None:
     with pytest.raises(GraphError, match="do not match"):
         build_plane_graph(np.zeros((3, 3), dtype=np.int32), 1, np.zeros((4, 3, 3), dtype=np.uint8))

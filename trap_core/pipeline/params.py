@@ -37,7 +37,7 @@ class TrapParams:
     max_side: int = _p(640, "px: frames whose longer side exceeds this are segmented scaled down to it, so objects "
                             "get as many regions as at the size the defaults were made for; results stay in the "
                             "frame's pixels (ours); 0 = full size")
-    colour_bins: int = _p(4, "levels per colour channel of the node labels (ours)")
+    colour_bins: int = _p(4, "levels per colour channel of the node labels; grey regions get its square (ours)")
     contact_tolerance: float = _p(0.0, "drop contacts shorter than this x sqrt(smaller region area) px, so faces do "
                                        "not flicker with pixel rounding (ours); 0 = keep all (paper)")
     eps: float = _p(40.0, "px: occurrences closer than this in frames at most tau apart are linked")

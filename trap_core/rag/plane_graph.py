@@ -96,9 +96,17 @@ class PlaneGraph:
 
 
 def colour_label(colour: np.ndarray, bins: int) -> np.ndarray:
-    """Discretise mean colours into ``bins`` levels per channel: label = r * bins^2 + g * bins + b."""
+    """Discretise mean colours into ``bins`` levels per channel: label = r * bins^2 + g * bins + b.
+
+    A grey mean (all channels equal: every region of a mono camera's frame) is cut into
+    ``bins``^2 levels instead, labels ``bins``^3 and up: with ``bins`` levels on the grey axis
+    alone, a mono video would have a handful of labels and its patterns would tell little apart.
+    """
     levels = np.clip((colour * bins / 256.0).astype(np.int64), 0, bins - 1)
-    return (levels[:, 0] * bins + levels[:, 1]) * bins + levels[:, 2]
+    label = (levels[:, 0] * bins + levels[:, 1]) * bins + levels[:, 2]
+    grey = (colour[:, 0] == colour[:, 1]) & (colour[:, 1] == colour[:, 2])
+    label[grey] = bins ** 3 + np.clip((colour[grey, 0] * bins ** 2 / 256.0).astype(np.int64), 0, bins ** 2 - 1)
+    return label
 
 
 def build_plane_graph(labels: np.ndarray, n_regions: int, rgb: np.ndarray, colour_bins: int = 4,

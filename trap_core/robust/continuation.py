@@ -12,7 +12,8 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, Track, box_iou, in_rows, with_frames
+from trap_core.clustering import ClusterSummary, Track, in_rows, with_frames
+from trap_core.robust.duplicates import repeats_others
 from trap_core.robust.motion import straight_line
 
 
@@ -53,13 +54,7 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
             continue
         follow = build(best)
         follow = in_rows(follow, follow.frames > end)
-        for k, other in enumerate(out):
-            if k != slot:
-                _, in_follow, in_other = np.intersect1d(follow.frames, other.frames, assume_unique=True,
-                                                        return_indices=True)
-                repeated = np.zeros(len(follow), dtype=bool)
-                repeated[in_follow[box_iou(follow.boxes[in_follow], other.boxes[in_other]) >= min_iou]] = True
-                follow = in_rows(follow, ~repeated)
+        follow = in_rows(follow, ~repeats_others(follow, [t for k, t in enumerate(out) if k != slot], min_iou))
         out[slot] = with_frames(current, follow.frames, follow.boxes, follow.score, follow.points)
         taken.add(best)
     return out

@@ -69,13 +69,19 @@ def extend_from_twins(tracks: Sequence[Track], twins: Sequence[Track], min_commo
         lend = ~np.isin(twin.frames, kept.frames)
         if size_jump:
             lend &= np.all(twin.boxes[:, 2:4] <= size_jump * np.median(kept.boxes[:, 2:4], axis=0), axis=1)
-        for k, other in enumerate(out):
-            if k != same[0]:
-                _, in_twin, in_other = np.intersect1d(twin.frames, other.frames, assume_unique=True,
-                                                           return_indices=True)
-                lend[in_twin[box_iou(twin.boxes[in_twin], other.boxes[in_other]) >= min_iou]] = False
+        lend &= ~repeats_others(twin, [t for k, t in enumerate(out) if k != same[0]], min_iou)
         out[same[0]] = _union(kept, in_rows(twin, lend))
     return out
+
+
+def repeats_others(track: Track, others: Sequence[Track], min_iou: float) -> np.ndarray:
+    """Per frame of ``track``: whether its box repeats one of ``others``' there (IoU at least
+    ``min_iou``)."""
+    repeated = np.zeros(len(track), dtype=bool)
+    for other in others:
+        _, mine, theirs = np.intersect1d(track.frames, other.frames, assume_unique=True, return_indices=True)
+        repeated[mine[box_iou(track.boxes[mine], other.boxes[theirs]) >= min_iou]] = True
+    return repeated
 
 
 def _same_object(a: Track, b: Track, min_common: int, min_iou: float, min_inside: float, min_share: float) -> bool:

@@ -4,8 +4,8 @@ from trap_core.clustering.distance import pattern_distances
 from trap_core.clustering.errors import ClusteringError
 from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns, labels_after_merges, lifetime_cut
 from trap_core.clustering.selection import ClusterSummary, select_clusters, summarise, twin_clusters
-from trap_core.clustering.tracks import (Track, box_containment, box_iou, build_track, core_regions, frame_face_sets,
-                                        in_rows, with_frames)
+from trap_core.clustering.tracks import (Track, box_centres, box_containment, box_iou, build_track, core_regions,
+                                        frame_face_sets, in_rows, with_frames)
 from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
 
 __all__ = [
@@ -16,6 +16,7 @@ __all__ = [
     "ObservedPaths",
     "Track",
     "Trajectories",
+    "box_centres",
     "box_containment",
     "box_iou",
     "build_track",

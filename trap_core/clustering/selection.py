@@ -119,11 +119,11 @@ def _near_frames(summary: ClusterSummary, clusters: np.ndarray, other: int, sepa
     paths = summary.paths
     there = np.full((summary.covered.shape[1], 2), np.nan)
     frames = np.flatnonzero(summary.covered[other])
-    there[frames] = paths.of(other)[frames - paths.start[other]]
+    there[frames] = paths.at(other, frames)
     near = np.zeros((clusters.size, summary.covered.shape[1]), dtype=bool)
     for row, cluster in enumerate(clusters):
         both = np.flatnonzero(summary.covered[cluster] & summary.covered[other])
-        here = paths.of(cluster)[both - paths.start[cluster]]
+        here = paths.at(cluster, both)
         near[row, both] = np.linalg.norm(here - there[both], axis=1) <= separation
     return near
 

@@ -49,6 +49,11 @@ def in_rows(track: Track, rows: np.ndarray) -> Track:
                                points=None if track.points is None else track.points[rows])
 
 
+def box_centres(boxes: np.ndarray) -> np.ndarray:
+    """Centres of boxes ``(x, y, w, h)`` (last axis), broadcast over the others."""
+    return boxes[..., :2] + boxes[..., 2:4] / 2
+
+
 def box_iou(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Intersection over union of boxes ``(x, y, w, h)`` (last axis), broadcast over the others."""
     a, b, inter = _intersection(a, b)

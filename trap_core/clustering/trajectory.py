@@ -25,6 +25,10 @@ class Trajectories:
     def of(self, index: int) -> np.ndarray:
         return self.points[self.offsets[index]:self.offsets[index + 1]]
 
+    def at(self, index: int, frames: np.ndarray | int) -> np.ndarray:
+        """Points of trajectory ``index`` in ``frames`` (within its span)."""
+        return self.of(index)[np.asarray(frames) - self.start[index]]
+
     def __len__(self) -> int:
         return int(self.start.size)
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from trap_core.clustering import Track
+from trap_core.clustering import Track, box_centres
 from trap_core.robust.gaps import with_inferred
 from trap_core.robust.rejoin import reaches_border
 
@@ -64,7 +64,7 @@ def continue_to_border(track: Track, n_frames: int, width: float, height: float,
             reference = inward[whole[inward]][:span]
             if reference.size < 3:
                 continue
-            centre = boxes[reference, :2] + boxes[reference, 2:] / 2
+            centre = box_centres(boxes[reference])
             velocity, intercept = np.polyfit(frames[reference], centre, 1)
             size = np.median(boxes[reference, 2:], axis=0)
             continued = []

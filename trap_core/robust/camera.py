@@ -112,7 +112,7 @@ def cluster_world_speed(summary: ClusterSummary, transforms: np.ndarray, lag: in
     paths = summary.paths
     observed = ObservedPaths(np.repeat(np.arange(len(frames)), [f.size for f in frames]),
                              np.concatenate(frames),
-                             np.concatenate([paths.of(c)[f - paths.start[c]] for c, f in enumerate(frames)]))
+                             np.concatenate([paths.at(c, f) for c, f in enumerate(frames)]))
     return world_speed(observed, transforms, len(frames), lag)
 
 

@@ -12,7 +12,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, Track, in_rows, with_frames
+from trap_core.clustering import ClusterSummary, Track, box_centres, in_rows, with_frames
 from trap_core.robust.duplicates import repeats_others
 from trap_core.robust.motion import straight_line
 
@@ -36,7 +36,7 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
         if end >= n_frames - window:
             continue
         centres = np.full((end + 1, 2), np.nan)
-        centres[current.frames] = current.boxes[:, :2] + current.boxes[:, 2:4] / 2
+        centres[current.frames] = box_centres(current.boxes)
         line = straight_line(centres, np.arange(max(end + 1 - window, 0), end + 1))
         if line is None:
             continue
@@ -46,7 +46,7 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
             after = np.flatnonzero(summary.covered[cluster, end + 1:]) + end + 1
             if cluster in taken or after.size < window or after[0] > end + window:
                 continue
-            position = summary.paths.of(cluster)[after[0] - summary.paths.start[cluster]]
+            position = summary.paths.at(cluster, after[0])
             error = float(np.linalg.norm(position - (origin + velocity * after[0])))
             if error <= best_error:
                 best, best_error = cluster, error

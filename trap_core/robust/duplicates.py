@@ -27,7 +27,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, box_containment, box_iou, in_rows, with_frames
+from trap_core.clustering import Track, box_centres, box_containment, box_iou, in_rows, with_frames
 
 TURN = 0.1  # a velocity change of this share of the box size per frame is a turn, not jitter
 HOLE = 3  # frames in a row where jitter may part two boxes that hold the same object
@@ -155,7 +155,7 @@ def _turn(boxes: np.ndarray, at: int, window: int) -> tuple[float, float]:
     """Change of the box centre's mean velocity at frame ``at`` (over ``window`` frames after
     against ``window`` frames before) and the larger of the two speeds, in px per frame; 0, 0
     where a side has fewer than two boxes."""
-    centres = boxes[:, :2] + boxes[:, 2:4] / 2
+    centres = box_centres(boxes)
     velocities = []
     for frames in (np.arange(max(at - window, 0), at), np.arange(at, min(at + window, len(boxes)))):
         seen = frames[~np.isnan(centres[frames, 0])]

@@ -31,7 +31,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, box_containment
+from trap_core.clustering import Track, box_centres, box_containment
 from trap_core.robust.rejoin import reaches_border
 
 GROUPED = 0.5  # share of the smaller box inside the other: the two boxes hold the same regions
@@ -83,7 +83,7 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
             partner = _partners(boxes)
     alone = partner < 0
     usual = _running_median(boxes[..., 2:4], alone, window)
-    offset = _running_median(points - boxes[..., :2] - boxes[..., 2:4] / 2, alone, window)
+    offset = _running_median(points - box_centres(boxes), alone, window)
     centres = points - offset
     placed = boxes.copy()
     for slot in range(len(tracks)):

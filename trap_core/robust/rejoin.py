@@ -107,7 +107,7 @@ def _mean_position(summary: ClusterSummary, members: np.ndarray, frames: np.ndar
     count = np.zeros(frames.size)
     for cluster in np.flatnonzero(members):
         seen = summary.covered[cluster, frames]
-        total[seen] += summary.paths.of(cluster)[frames[seen] - summary.paths.start[cluster]]
+        total[seen] += summary.paths.at(cluster, frames[seen])
         count[seen] += 1
     return total / count[:, None]
 

@@ -132,6 +132,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         spare = np.flatnonzero((summary.length >= params.tau) & (True if moving is None else moving))
         tracks = continue_tracks(tracks, summary, spare[~np.isin(spare, selected)], n_frames, max(3, params.tau // 2),
                                  params.eps, lambda cluster: track_of(cluster, 0))
+        if params.size_jump:  # the continuations' boxes were not sized against their tracks yet
+            tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau, groups=False)
     if robust and params.to_border:
         tracks = [continue_to_border(t, n_frames, width, height, max(3, params.tau // 2), 2 * params.tau)
                   for t in tracks]

@@ -785,3 +785,20 @@ def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_end
     built[2] = _as_track(0, np.arange(62, 100), repeating[62:])
     out = continue_tracks([cut, far_track], summary, np.array([2]), 100, 12, 40.0, built.__getitem__)
     assert out[0].frames.tolist() == list(range(60)) + list(range(62, 80))
+
+
+def test_boxes_that_slide_onto_something_else_and_back_are_dropped_and_a_smooth_turn_is_kept() -> None:
+    """A 40 px object goes right at 3 px per frame; in frames 30-34 its box slides 10, 20, 30,
+    40, 50 px down and is back at 35 (a look-alike below). Another object curves through a
+    quarter circle of radius 150 px in 60 frames. Only the boxes more than half the size off
+    the path go: 32-34; the curve loses nothing."""
+    from trap_core.robust import drop_strays
+    t = np.arange(60, dtype=float)
+    boxes = np.column_stack([100 + 3 * t, np.full(60, 200.0), np.full(60, 40.0), np.full(60, 40.0)])
+    boxes[30:35, 1] += [10.0, 20.0, 30.0, 40.0, 50.0]
+    kept = drop_strays(_as_track(1, np.arange(60), boxes), 8)
+    assert sorted(set(range(60)) - set(kept.frames.tolist())) == [32, 33, 34]
+    angle = t / 59 * np.pi / 2
+    curve = np.column_stack([300 + 150 * np.sin(angle), 100 + 150 * (1 - np.cos(angle)), np.full(60, 40.0),
+                             np.full(60, 40.0)])
+    assert len(drop_strays(_as_track(2, np.arange(60), curve), 8)) == 60

@@ -15,8 +15,8 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed, continue_to_border,
-                              continue_tracks, drop_shared_stretches, drop_still_regions, extend_from_twins, fill_gaps,
-                              grow_boxes, lookalike_tracks, merge_duplicates, pattern_sizes, rejoin_fragments,
+                              continue_tracks, drop_shared_stretches, drop_still_regions, drop_strays, extend_from_twins,
+                              fill_gaps, grow_boxes, lookalike_tracks, merge_duplicates, pattern_sizes, rejoin_fragments,
                               separate_groups, split_mixed, swap_at_crossings, world_speed)
 
 
@@ -126,6 +126,9 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=params.groups, patience=params.tau)
     if robust and params.one_track:
+        tracks = [drop_strays(t, max(3, params.tau // 3)) for t in tracks]
+        if params.fill_gaps:
+            tracks = [fill_gaps(t, params.tau) for t in tracks]
         alike = lookalike_tracks(tracks, labels, mined.st_pattern[clustered], occurrences, params.rejoin_similarity)
         tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
         tracks = drop_shared_stretches(tracks, n_frames, params.tau, max(3, params.tau // 2))

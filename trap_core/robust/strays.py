@@ -1,0 +1,53 @@
+"""Boxes that leave a track's path for a few frames (ours).
+
+Where look-alikes meet, a cluster's patterns can hold blends of both objects for a few frames,
+and its box is then the pair's; :func:`trap_core.robust.separate_groups` gives such a box the
+track's usual size, but where the patterns sit mostly on the other object, so the track's box
+slides onto that object and back. A box can also come from a pattern path linked, for a frame
+or two, to the same structure on something else. Either way the track seems to turn twice where
+the object went straight on, and the rules that compare tracks' motions (the trade of
+continuations at crossings, who loses a shared stretch) read the wrong track as the one that
+turns. :func:`drop_strays` removes such boxes; :func:`trap_core.robust.fill_gaps` then puts
+the track's path through those frames.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from trap_core.clustering import Track, box_centres, in_rows
+from trap_core.robust.motion import straight_line
+
+
+def drop_strays(track: Track, window: int, reach: float = 0.5) -> Track:
+    """The track without the boxes that stray from its path.
+
+    Parameters
+    ----------
+    track : Track
+    window : int
+        Frames on either side of a box through which the track's path there is drawn: the
+        Theil-Sen line (:func:`trap_core.robust.motion.straight_line`) through the other box
+        centres of those frames, so that a few stray boxes among them do not pull it.
+    reach : float
+        A box whose centre lies farther from that line than this share of the track's usual
+        size (median of the larger box side) strays: at half the size, the box covers less
+        than about half of the object it should hold.
+
+    Returns
+    -------
+    Track
+    """
+    if len(track) < 3:
+        return track
+    frames = track.frames
+    centres = np.full((int(frames[-1]) + 1, 2), np.nan)
+    centres[frames] = box_centres(track.boxes)
+    limit = reach * float(np.median(np.max(track.boxes[:, 2:4], axis=1)))
+    stray = np.zeros(len(track), dtype=bool)
+    for row, frame in enumerate(frames.tolist()):
+        around = np.arange(max(frame - window, 0), min(frame + window, len(centres) - 1) + 1)
+        line = straight_line(centres, around[around != frame])
+        if line is not None:
+            velocity, origin = line
+            stray[row] = np.linalg.norm(centres[frame] - (origin + velocity * frame)) > limit
+    return in_rows(track, ~stray)

@@ -132,6 +132,21 @@ def test_rejoin_never_joins_fragments_seen_at_once_in_different_places() -> None
     assert np.unique(rejoin_fragments(np.arange(2), paths, st_pattern[:2], 100, max_apart=40.0)).size == 1
 
 
+def test_rejoin_never_joins_a_fragment_that_goes_along_with_another_object() -> None:
+    """Object A (frames 0-49, y 10) leaves; object P (y 300) is seen all along. A fragment
+    with A's structures appears at frame 80 on P (5 px from P's cluster, for all its frames):
+    it is P's, and P was seen with A 290 px away, so it is not A's. A fragment on nothing
+    else joins A."""
+    line = lambda start, n, y: np.column_stack([np.arange(start, start + n) * 2.0, np.full(n, y)])  # noqa: E731
+    st_pattern = np.array([5, 9, 5])
+    on_other = _paths([(0, line(0, 50, 10)), (0, line(0, 200, 300)), (80, line(80, 120, 305))])
+    labels = rejoin_fragments(np.arange(3), on_other, st_pattern, 200, max_apart=40.0)
+    assert np.unique(labels).size == 3
+    on_nothing = _paths([(0, line(0, 50, 10)), (0, line(0, 200, 300)), (80, line(80, 120, 100))])
+    labels = rejoin_fragments(np.arange(3), on_nothing, st_pattern, 200, max_apart=40.0)
+    assert labels[0] == labels[2] != labels[1]
+
+
 def test_rejoin_continues_a_fragment_right_where_another_ended_whatever_its_structures() -> None:
     """Noise changed every structure the object shows at frame 30; the new fragment starts where
     the old one's motion puts it. One 30 px off, or starting 10 frames later, is not adjacent."""

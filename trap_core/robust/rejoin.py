@@ -17,6 +17,8 @@ continues only one that enters it (first box at the border), and one that vanish
 the view (occluded) only one that appears inside it: an object comes back the way it went.
 Two groups seen at once in different places (further apart than the linking distance over the
 frames both cover) are two objects and are never joined, not even through a later fragment.
+Nor is a fragment joined to a group when it goes along with other clusters (in the same place,
+for most of its frames) that are mostly seen with that group elsewhere: it is on their object.
 """
 from __future__ import annotations
 
@@ -25,6 +27,14 @@ import numpy as np
 from trap_core.clustering import ClusterSummary, Trajectories, summarise
 from trap_core.mining import MiningResult
 from trap_core.robust.camera import map_points
+
+# Clusters go along (are on one object) when they share at least ALONG_FRAMES times the overlap
+# two fragments of one object may have and ALONG_SHARE of the shorter one's frames, within a
+# quarter of the distance that makes two groups apart: evidence strong enough to overrule
+# similar structures and a good prediction (a cluster along a fragment for a few frames may be
+# a look-alike passing by).
+ALONG_FRAMES = 4
+ALONG_SHARE = 0.8
 
 
 def structure_similarity(labels: np.ndarray, st_pattern: np.ndarray, weights: np.ndarray | float = 1.0
@@ -58,7 +68,9 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     from where its motion puts it, is a candidate whatever its structures: an object does not
     jump, but a noisy one can change every structure it shows from one frame to the next.
     Groups seen in the same frames more than ``max_apart`` px apart (on average over those
-    frames) are two objects, whatever else they share: they are not joined.
+    frames) are two objects, whatever else they share: they are not joined. Neither are two
+    fragments when one goes along with clusters (:func:`_going_along`) that are mostly seen
+    with the other's group and apart from it (:func:`_on_another_object`).
     """
     labels = np.unique(labels, return_inverse=True)[1]
     summary = summarise(labels, paths, np.ones(labels.size), n_frames)
@@ -82,6 +94,7 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     earlier, later, costs = earlier[keep], later[keep], costs[keep]
     group = np.arange(n_clusters)
     group_covered = summary.covered.copy()
+    along = _going_along(summary, overlap, ALONG_FRAMES * max_overlap, max_apart / 4)
     for pair in np.argsort(costs, kind="stable"):
         a, b = group[earlier[pair]], group[later[pair]]
         both = np.flatnonzero(group_covered[a] & group_covered[b])
@@ -89,9 +102,42 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
             continue
         if both.size and _apart(summary, group == a, group == b, both) > max_apart:
             continue
+        if _on_another_object(summary, group, group_covered, earlier[pair], later[pair], along, max_apart):
+            continue
         group[group == b] = a
         group_covered[a] |= group_covered[b]
     return np.unique(group[labels], return_inverse=True)[1]
+
+
+def _going_along(summary: ClusterSummary, overlap: np.ndarray, min_frames: int, reach: float) -> np.ndarray:
+    """(C, C) whether two clusters are on one object: they share at least ``min_frames`` frames
+    and ``ALONG_SHARE`` of the shorter one's, and are on average at most ``reach`` px apart in
+    those frames (patterns on different parts of an object are a part's size apart)."""
+    along = np.zeros(overlap.shape, dtype=bool)
+    shorter = np.minimum.outer(summary.length, summary.length)
+    for a, b in zip(*np.nonzero(np.triu((overlap >= min_frames) & (overlap >= ALONG_SHARE * shorter), k=1))):
+        both = np.flatnonzero(summary.covered[a] & summary.covered[b])
+        distance = np.linalg.norm(summary.paths.at(a, both) - summary.paths.at(b, both), axis=1)
+        along[a, b] = along[b, a] = float(np.mean(distance)) <= reach
+    return along
+
+
+def _on_another_object(summary: ClusterSummary, group: np.ndarray, group_covered: np.ndarray, first: int,
+                       second: int, along: np.ndarray, max_apart: float) -> bool:
+    """Whether fragment ``first`` or ``second`` is on another object than the other's group:
+    most of the clusters it goes along with (``along``, outside both groups) that are seen at
+    once with that group are more than ``max_apart`` px from it. Most, not any: a cluster
+    that mixes two look-alikes goes along with one for a while and is seen with the other."""
+    one = np.arange(group.size)
+    for mine, theirs in ((first, group[second]), (second, group[first])):
+        votes = []
+        for companion in np.flatnonzero(along[mine] & (group != group[first]) & (group != group[second])).tolist():
+            both = np.flatnonzero(group_covered[theirs] & summary.covered[companion])
+            if both.size:
+                votes.append(_apart(summary, group == theirs, one == companion, both) > max_apart)
+        if 2 * sum(votes) > len(votes):
+            return True
+    return False
 
 
 def _apart(summary: ClusterSummary, first: np.ndarray, second: np.ndarray, frames: np.ndarray) -> float:

@@ -690,6 +690,21 @@ def test_a_slow_track_that_goes_back_onto_another_tracks_object_turns() -> None:
     assert len(out[0]) == 100 and out[1].frames.tolist() == list(range(60))
 
 
+def test_a_track_that_ends_with_the_stretch_is_no_evidence_that_the_other_turned_there() -> None:
+    """Track 2 goes on with track 1's object from frame 60 (it turns there) and ends at 99;
+    track 1's object turns at frame 100. Where a track has no boxes after, its turn is not
+    known: track 1 does not lose the stretch for turning more than it, track 2 does."""
+    from trap_core.robust import drop_shared_stretches
+    t = np.arange(160, dtype=float)
+    own = np.column_stack([100 + 2 * t, np.full(160, 200.0), np.full(160, 40.0), np.full(160, 30.0)])
+    own[100:, :2] = own[99, :2] + np.column_stack([np.zeros(60), 3 * (t[100:] - 99)])  # goes down from 100
+    joined = np.column_stack([500 - 2 * t[:100], np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    joined[60:] = own[60:100]
+    out = drop_shared_stretches([_as_track(1, np.arange(160), own), _as_track(2, np.arange(100), joined)],
+                                160, 25, 12)
+    assert len(out[0]) == 160 and out[1].frames.tolist() == list(range(60))
+
+
 def test_a_twin_lends_its_track_only_frames_the_track_lacks_at_the_usual_size_and_no_other_tracks() -> None:
     """The kept track holds frames 0-59 of a look-alike; its twin holds the same object over
     frames 0-99, but with the pair's box (twice as wide) in 90-99, and on the other look-alike

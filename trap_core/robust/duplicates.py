@@ -146,21 +146,26 @@ def _stretches(same: np.ndarray, min_frames: int) -> list[tuple[int, int]]:
 def _turns(own: np.ndarray, other: np.ndarray, at: int, window: int, least: float) -> bool:
     """Whether the track with boxes ``own`` turns at frame ``at`` and the one with ``other`` does
     not as much: its velocity change is larger than the other's and than ``least`` or, for a
-    slow track, than its own speed (a slow object that goes back turns by less than ``least``)."""
-    change, speed = _turn(own, at, window)
-    return change > max(_turn(other, at, window)[0], min(least, speed))
+    slow track, than its own speed (a slow object that goes back turns by less than ``least``).
+    Where either track's turn is not known (it ends or starts there) nothing is said: a track
+    that ends with the stretch does not show that it went straight on."""
+    mine, theirs = _turn(own, at, window), _turn(other, at, window)
+    if mine is None or theirs is None:
+        return False
+    change, speed = mine
+    return change > max(theirs[0], min(least, speed))
 
 
-def _turn(boxes: np.ndarray, at: int, window: int) -> tuple[float, float]:
+def _turn(boxes: np.ndarray, at: int, window: int) -> tuple[float, float] | None:
     """Change of the box centre's mean velocity at frame ``at`` (over ``window`` frames after
-    against ``window`` frames before) and the larger of the two speeds, in px per frame; 0, 0
+    against ``window`` frames before) and the larger of the two speeds, in px per frame; None
     where a side has fewer than two boxes."""
     centres = box_centres(boxes)
     velocities = []
     for frames in (np.arange(max(at - window, 0), at), np.arange(at, min(at + window, len(boxes)))):
         seen = frames[~np.isnan(centres[frames, 0])]
         if seen.size < 2:
-            return 0.0, 0.0
+            return None
         velocities.append(np.polyfit(seen, centres[seen], 1)[0])
     return (float(np.linalg.norm(velocities[1] - velocities[0])),
             float(max(np.linalg.norm(velocities[0]), np.linalg.norm(velocities[1]))))

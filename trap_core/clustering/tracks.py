@@ -54,6 +54,18 @@ def box_centres(boxes: np.ndarray) -> np.ndarray:
     return boxes[..., :2] + boxes[..., 2:4] / 2
 
 
+def centre_path(track: Track, length: int) -> np.ndarray:
+    """(length, 2) the track's box centre in each frame, NaN where it has no box."""
+    centres = np.full((length, 2), np.nan)
+    centres[track.frames] = box_centres(track.boxes)
+    return centres
+
+
+def usual_size(track: Track) -> float:
+    """The size of the track's object: the median of its boxes' larger side."""
+    return float(np.median(np.max(track.boxes[:, 2:4], axis=1)))
+
+
 def box_iou(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Intersection over union of boxes ``(x, y, w, h)`` (last axis), broadcast over the others."""
     a, b, inter = _intersection(a, b)

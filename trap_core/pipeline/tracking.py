@@ -15,9 +15,10 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed, continue_to_border,
-                              continue_tracks, drop_shared_stretches, drop_still_regions, drop_strays, extend_from_twins,
-                              fill_gaps, grow_boxes, lookalike_tracks, merge_duplicates, pattern_sizes, rejoin_fragments,
-                              separate_groups, split_mixed, swap_at_crossings, world_speed)
+                              continue_tracks, drop_shared_stretches, drop_still_regions, drop_strays,
+                              extend_from_twins, fill_gaps, grow_boxes, lookalike_tracks, merge_duplicates,
+                              pattern_sizes, rejoin_fragments, separate_groups, split_mixed, swap_at_crossings,
+                              world_speed)
 
 
 @dataclass

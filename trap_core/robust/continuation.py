@@ -12,7 +12,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, Track, box_centres, in_rows, with_frames
+from trap_core.clustering import ClusterSummary, Track, centre_path, in_rows, with_frames
 from trap_core.robust.duplicates import repeats_others
 from trap_core.robust.motion import straight_line
 
@@ -35,9 +35,7 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
         end = int(current.frames[-1])
         if end >= n_frames - window:
             continue
-        centres = np.full((end + 1, 2), np.nan)
-        centres[current.frames] = box_centres(current.boxes)
-        line = straight_line(centres, np.arange(max(end + 1 - window, 0), end + 1))
+        line = straight_line(centre_path(current, end + 1), np.arange(max(end + 1 - window, 0), end + 1))
         if line is None:
             continue
         velocity, origin = line

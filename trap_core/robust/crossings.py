@@ -15,7 +15,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, box_centres, in_rows, with_frames
+from trap_core.clustering import Track, centre_path, in_rows, usual_size, with_frames
 from trap_core.robust.duplicates import TURN
 from trap_core.robust.motion import straight_line
 from trap_core.robust.rejoin import structure_similarity
@@ -49,11 +49,8 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
     ``alike[a, b]`` (:func:`lookalike_tracks`) trade.
     """
     out = list(tracks)
-    centres = np.full((len(out), n_frames, 2), np.nan)
-    sizes = np.zeros(len(out))
-    for slot, t in enumerate(out):
-        centres[slot, t.frames] = box_centres(t.boxes)
-        sizes[slot] = float(np.median(np.max(t.boxes[:, 2:4], axis=1))) if len(t) else 0.0
+    centres = np.array([centre_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 2)
+    sizes = np.array([usual_size(t) if len(t) else 0.0 for t in out])
     for a in range(len(out)):
         for b in range(a + 1, len(out)):
             if not alike[a, b]:

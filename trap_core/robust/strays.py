@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from trap_core.clustering import Track, box_centres, in_rows
+from trap_core.clustering import Track, centre_path, in_rows, usual_size
 from trap_core.robust.motion import straight_line
 
 
@@ -40,9 +40,8 @@ def drop_strays(track: Track, window: int, reach: float = 0.5) -> Track:
     if len(track) < 3:
         return track
     frames = track.frames
-    centres = np.full((int(frames[-1]) + 1, 2), np.nan)
-    centres[frames] = box_centres(track.boxes)
-    limit = reach * float(np.median(np.max(track.boxes[:, 2:4], axis=1)))
+    centres = centre_path(track, int(frames[-1]) + 1)
+    limit = reach * usual_size(track)
     stray = np.zeros(len(track), dtype=bool)
     for row, frame in enumerate(frames.tolist()):
         around = np.arange(max(frame - window, 0), min(frame + window, len(centres) - 1) + 1)

@@ -817,6 +817,31 @@ def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_end
     assert out[0].frames.tolist() == list(range(60)) + list(range(62, 80))
 
 
+def test_a_track_that_takes_over_where_another_ended_is_appended_to_it() -> None:
+    """Track 1 holds frames 0-59 of an object moving right. Track 2 starts at frame 56 on the
+    object of track 3 (repeating its boxes) and from frame 65 goes on where track 1's motion
+    puts it; track 4 starts at 58 in the right time but 185 px away. Tracks 1 and 2 become one
+    (track 2's repeated frames left out); with track 2 taking over only at frame 80 (more than
+    12 frames after the end) nothing is joined."""
+    from trap_core.robust import join_handovers
+    t = np.arange(100, dtype=float)
+    boxes = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    below = boxes + [0.0, 100.0, 0.0, 0.0]
+    far = boxes + [0.0, -185.0, 0.0, 0.0]
+    taking_over = np.vstack([below[56:65], boxes[65:]])
+    frames = np.arange(100)
+    tracks = [_as_track(1, frames[:60], boxes[:60]), _as_track(2, frames[56:], taking_over),
+              _as_track(3, frames, below), _as_track(4, frames[58:], far[58:])]
+    out = join_handovers(tracks, 100, 12, 40.0)
+    assert [t.track_id for t in out] == [1, 2, 3]
+    assert out[0].frames.tolist() == list(range(60)) + list(range(65, 100))
+    np.testing.assert_allclose(out[0].boxes[60:], boxes[65:])
+    assert [len(t) for t in out[1:]] == [100, 42]
+    late = np.vstack([below[56:80], boxes[80:]])
+    tracks[1] = _as_track(2, frames[56:], late)
+    assert len(join_handovers(tracks, 100, 12, 40.0)) == 4
+
+
 def test_boxes_that_slide_onto_something_else_and_back_are_dropped_and_a_smooth_turn_is_kept() -> None:
     """A 40 px object goes right at 3 px per frame; in frames 30-34 its box slides 10, 20, 30,
     40, 50 px down and is back at 35 (a look-alike below). Another object curves through a

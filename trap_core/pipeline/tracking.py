@@ -16,9 +16,9 @@ from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed, continue_to_border,
                               continue_tracks, drop_shared_stretches, drop_still_regions, drop_strays,
-                              extend_from_twins, fill_gaps, grow_boxes, lookalike_tracks, merge_duplicates,
-                              pattern_sizes, rejoin_fragments, separate_groups, split_mixed, swap_at_crossings,
-                              world_speed)
+                              extend_from_twins, fill_gaps, grow_boxes, join_handovers, lookalike_tracks,
+                              merge_duplicates, pattern_sizes, rejoin_fragments, separate_groups, split_mixed,
+                              swap_at_crossings, world_speed)
 
 
 @dataclass
@@ -136,6 +136,9 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         spare = np.flatnonzero((summary.length >= params.tau) & (True if moving is None else moving))
         tracks = continue_tracks(tracks, summary, spare[~np.isin(spare, selected)], n_frames, max(3, params.tau // 2),
                                  params.eps, lambda cluster: track_of(cluster, 0))
+        tracks = join_handovers(tracks, n_frames, max(3, params.tau // 2), params.eps)
+        if params.fill_gaps:
+            tracks = [fill_gaps(t, params.tau) for t in tracks]
         if params.size_jump:  # the continuations' boxes were not sized against their tracks yet
             tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau, groups=False)
     if robust and params.to_border:

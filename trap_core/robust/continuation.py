@@ -5,14 +5,20 @@ object; :func:`trap_core.robust.drop_shared_stretches` then ends its track there
 own patterns after the meeting often make a cluster of their own that starts where the track
 ended but is too short to be selected, and overlaps the track's cluster in time too much to be
 rejoined to it. :func:`continue_tracks` appends it.
+
+When such a cluster was long enough to be selected, the object's path after the meeting is a
+track of its own, often starting on the other object for a few frames (while the two are in
+one place) before it follows its own: :func:`join_handovers` makes the two tracks one.
 """
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 
+import dataclasses
+
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, Track, centre_path, in_rows, with_frames
+from trap_core.clustering import ClusterSummary, Track, box_centres, centre_path, in_rows, with_frames
 from trap_core.robust.duplicates import repeats_others
 from trap_core.robust.motion import straight_line
 
@@ -35,7 +41,7 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
         end = int(current.frames[-1])
         if end >= n_frames - window:
             continue
-        line = straight_line(centre_path(current, end + 1), np.arange(max(end + 1 - window, 0), end + 1))
+        line = _motion_at_end(current, window)
         if line is None:
             continue
         velocity, origin = line
@@ -56,3 +62,53 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
         out[slot] = with_frames(current, follow.frames, follow.boxes, follow.score, follow.points)
         taken.add(best)
     return out
+
+
+def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: float, min_iou: float = 0.5
+                   ) -> list[Track]:
+    """Tracks where a track that ends more than ``window`` frames before the video is followed by
+    another that takes its object over: the later one is appended to the earlier and dropped.
+
+    The later track must start at most ``window`` frames before or after the earlier one ends;
+    of its frames after that end, those where it repeats a third track's box (IoU at least
+    ``min_iou``: it is still on the other object) do not count; it must keep at least ``window``
+    of them, the first at most ``window`` frames after the end, and be there at most ``reach``
+    px from where the earlier track's motion (a straight line through its last ``window`` box
+    centres) puts it. The closest such track is taken; its counted frames are appended. Ids are
+    renumbered 1.. in order.
+    """
+    out = list(tracks)
+    slot = 0
+    while slot < len(out):
+        current = out[slot]
+        end = int(current.frames[-1])
+        line = _motion_at_end(current, window) if end < n_frames - window else None
+        best, best_error, best_rows = None, reach, None
+        for other, later in enumerate(out):
+            if line is None or other == slot or abs(int(later.frames[0]) - end) > window:
+                continue
+            rows = later.frames > end
+            rows &= ~repeats_others(later, [t for k, t in enumerate(out) if k not in (slot, other)], min_iou)
+            after = later.frames[rows]
+            if after.size < window or after[0] > end + window:
+                continue
+            velocity, origin = line
+            position = box_centres(later.boxes[rows][0])
+            error = float(np.linalg.norm(position - (origin + velocity * after[0])))
+            if error <= best_error:
+                best, best_error, best_rows = other, error, rows
+        if best is None:
+            slot += 1
+            continue
+        follow = in_rows(out[best], best_rows)
+        out[slot] = with_frames(current, follow.frames, follow.boxes, follow.score, follow.points)
+        del out[best]
+        slot = 0  # the joined track may now be followed by another
+    return [dataclasses.replace(t, track_id=i) for i, t in enumerate(out, start=1)]
+
+
+def _motion_at_end(track: Track, window: int) -> tuple[np.ndarray, np.ndarray] | None:
+    """Velocity and origin of the straight line through the track's last ``window`` frames'
+    box centres (:func:`straight_line`), None where too few."""
+    end = int(track.frames[-1])
+    return straight_line(centre_path(track, end + 1), np.arange(max(end + 1 - window, 0), end + 1))

@@ -725,6 +725,25 @@ def test_a_twin_lends_its_track_only_frames_the_track_lacks_at_the_usual_size_an
     assert [len(t) for t in extend_from_twins([kept, other], [stranger], 25, 1.5)] == [60, 100]
 
 
+def test_a_twin_lends_nothing_in_the_view_while_the_object_is_out_of_it() -> None:
+    """The track's object leaves a 640x480 view on the right at frame 49 and comes back on the
+    left at 130. Its twin also has boxes in the middle of the view in frames 60-89 (another
+    object) and at the left border in 120-129 (the object coming in): only those are lent."""
+    from trap_core.robust import extend_from_twins
+    t = np.arange(200, dtype=float)
+    x = np.where(t < 100, 500 + 2.5 * t, 2 * (t - 130) - 10)
+    boxes = np.column_stack([x, np.full(200, 200.0), np.full(200, 40.0), np.full(200, 30.0)])
+    own = np.r_[0:50, 130:200]
+    lent = np.r_[0:50, 60:90, 120:200]
+    twin = boxes.copy()
+    twin[60:90, 0] = 300.0
+    kept = _as_track(1, own, boxes[own])
+    everything = extend_from_twins([kept], [_as_track(0, lent, twin[lent])], 25, 1.5)
+    assert everything[0].frames.tolist() == lent.tolist()
+    out = extend_from_twins([kept], [_as_track(0, lent, twin[lent])], 25, 1.5, view=(640, 480))
+    assert out[0].frames.tolist() == np.r_[0:50, 120:200].tolist()
+
+
 def test_shared_tails_kept_when_no_track_turns_or_too_short() -> None:
     from trap_core.robust import drop_shared_stretches
     frames = np.arange(100)

@@ -96,7 +96,8 @@ class TrapParams:
                                "met exchange their continuations back")
     own_frames: bool = _p(True, "robust, n_objects = 0: clusters are ranked by the frames no kept cluster is near "
                                 "(not all their frames), and a cluster left out as near one kept cluster lends its "
-                                "track the frames it lacks (same object, usual size, no other track's box)")
+                                "track the frames it lacks (same object, usual size, no other track's box, none while "
+                                "the object is out of the view)")
     to_border: bool = _p(True, "robust: a track that ends (starts) at the image border is continued while its object, "
                                "moving as over its last (first) tau/2 frames fully in view, is partly visible")
     groups: bool = _p(True, "robust: where tracks' boxes merge, each gets its usual size at its side of the pair, "

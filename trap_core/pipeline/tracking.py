@@ -122,7 +122,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     if own_frames and not params.n_objects:
         twins = twin_clusters(summary, selected, n_frames, params.min_track_length, params.separation, params.tau,
                               moving)
-        tracks = extend_from_twins(tracks, [track_of(cluster, 0) for cluster in twins], params.tau, params.size_jump)
+        tracks = extend_from_twins(tracks, [track_of(cluster, 0) for cluster in twins], params.tau, params.size_jump,
+                                   view=(width, height))
     if robust and (params.size_jump or params.groups):
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=params.groups, patience=params.tau)

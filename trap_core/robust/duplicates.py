@@ -28,6 +28,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from trap_core.clustering import Track, box_centres, box_containment, box_iou, in_rows, with_frames
+from trap_core.robust.rejoin import reaches_border
 
 TURN = 0.1  # a velocity change of this share of the box size per frame is a turn, not jitter
 HOLE = 3  # frames in a row where jitter may part two boxes that hold the same object
@@ -50,7 +51,8 @@ def merge_duplicates(tracks: Sequence[Track], min_common: int, min_iou: float = 
 
 
 def extend_from_twins(tracks: Sequence[Track], twins: Sequence[Track], min_common: int, size_jump: float,
-                      min_iou: float = 0.5, min_inside: float = 0.9, min_share: float = 0.8) -> list[Track]:
+                      min_iou: float = 0.5, min_inside: float = 0.9, min_share: float = 0.8,
+                      view: tuple[float, float] | None = None) -> list[Track]:
     """Tracks with frames they lack taken from twin tracks (those of
     :func:`trap_core.clustering.twin_clusters`).
 
@@ -59,6 +61,9 @@ def extend_from_twins(tracks: Sequence[Track], twins: Sequence[Track], min_commo
     at most ``size_jump`` times the track's usual width and height (0: any size; a twin on two
     look-alikes moving together has the pair's box) and where it does not repeat another
     track's box (IoU at least ``min_iou``: a twin that followed a look-alike for a while).
+    With the ``view``'s width and height, an object that left it comes back at its border: in a
+    gap after a track's box at the border, a twin lends nothing before its first box there, and
+    in a gap before one, nothing after its last (:func:`_back_through_border`).
     """
     out = list(tracks)
     for twin in twins:
@@ -70,8 +75,29 @@ def extend_from_twins(tracks: Sequence[Track], twins: Sequence[Track], min_commo
         if size_jump:
             lend &= np.all(twin.boxes[:, 2:4] <= size_jump * np.median(kept.boxes[:, 2:4], axis=0), axis=1)
         lend &= ~repeats_others(twin, [t for k, t in enumerate(out) if k != same[0]], min_iou)
+        if view is not None:
+            lend &= _back_through_border(kept, twin, view)
         out[same[0]] = _union(kept, in_rows(twin, lend))
     return out
+
+
+def _back_through_border(kept: Track, twin: Track, view: tuple[float, float]) -> np.ndarray:
+    """Per frame of ``twin``: whether it may hold ``kept``'s object as far as the border goes.
+    In a gap of ``kept`` that follows a box at the border (the object left the view), no frame
+    before the twin's first box at the border there; in one that precedes such a box (it came
+    in), no frame after the twin's last box at the border."""
+    fine = np.ones(len(twin), dtype=bool)
+    own_border = reaches_border(kept.boxes, *view)
+    twin_border = reaches_border(twin.boxes, *view)
+    slot = np.searchsorted(kept.frames, twin.frames)  # the kept frames before a twin frame: slot - 1
+    for gap in np.unique(slot).tolist():
+        rows = np.flatnonzero(slot == gap)
+        at_border = rows[twin_border[rows]]
+        if gap > 0 and own_border[gap - 1]:
+            fine[rows[rows < (at_border[0] if at_border.size else rows[-1] + 1)]] = False
+        if gap < len(kept) and own_border[gap]:
+            fine[rows[rows > (at_border[-1] if at_border.size else rows[0] - 1)]] = False
+    return fine
 
 
 def repeats_others(track: Track, others: Sequence[Track], min_iou: float) -> np.ndarray:

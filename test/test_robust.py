@@ -226,18 +226,24 @@ def test_a_fragment_leaves_at_the_border_if_one_of_its_last_patterns_does() -> N
     assert apart[0] != apart[2]
 
 
-def test_border_contacts_of_first_and_last_boxes() -> None:
+def test_border_contacts_of_first_and_last_boxes_moving_in_and_out() -> None:
+    """Patterns 0 and 1 come in from the border; 2 goes out; 3 starts at the border but goes
+    further out (the border cut a new structure from its object): it leaves, it does not enter."""
     from trap_core.mining import MiningResult
     from trap_core.robust import border_contacts
     box = np.array([[600, 100, 639, 140],   # pattern 0 starts at the right border...
                     [300, 100, 340, 140],   # ...and ends inside
                     [100, 5, 140, 45],      # pattern 1 starts 5 px from the top (40 px box: within 25 %)
-                    [100, 30, 140, 70]], dtype=np.float32)  # ...and ends 30 px from it
-    empty = np.zeros(4)
-    result = MiningResult(empty, empty, empty, np.arange(4), np.zeros(4, int), np.zeros((4, 2)), box, box,
-                          np.zeros((4, 3), int), np.array([0, 0]), np.array([0, 2, 4]), np.arange(4))
-    starts, ends = border_contacts(result, np.array([0, 1]), 640, 480)
-    assert starts.tolist() == [True, True] and ends.tolist() == [False, False]
+                    [100, 30, 140, 70],     # ...and ends 30 px from it
+                    [300, 100, 340, 140],   # pattern 2 starts inside...
+                    [600, 100, 639, 140],   # ...and ends at the right border
+                    [8, 200, 48, 240],      # pattern 3 starts 8 px from the left border...
+                    [0, 200, 40, 240]], dtype=np.float32)  # ...and ends at it
+    empty = np.zeros(8)
+    result = MiningResult(empty, empty, empty, np.arange(8), np.zeros(8, int), np.zeros((8, 2)), box, box,
+                          np.zeros((8, 3), int), np.array([0, 0, 0, 0]), np.array([0, 2, 4, 6, 8]), np.arange(8))
+    starts, ends = border_contacts(result, np.arange(4), 640, 480)
+    assert starts.tolist() == [True, True, False, False] and ends.tolist() == [False, False, True, True]
 
 
 def test_border_share_counts_occurrences_cut_by_the_edge_per_cluster() -> None:

@@ -89,7 +89,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     if robust and params.rejoin:
         labels = rejoin_fragments(labels, sub_paths, mined.st_pattern[clustered], n_frames,
                                   params.rejoin_similarity, params.tau,
-                                  border_contacts(mined, clustered, width, height), occurrences, transforms,
+                                  border_contacts(mined, clustered, width, height, lag=max(1, params.tau // 2)),
+                                  occurrences, transforms,
                                   adjacent_gap=max(1, params.tau // 10), adjacent_reach=params.eps / 4,
                                   max_apart=params.eps)
     summary = summarise(labels, sub_paths, occurrences, n_frames)

@@ -12,8 +12,8 @@ among all such pairs, the later one starts closest to where the earlier one's mo
 closest first, and a joined cluster can no longer take a fragment that overlaps it, which
 keeps look-alike objects apart. A fragment that starts right where and when another ends
 is a candidate even without shared structures (noise can change them all at once). With the
-fragments' border contacts, a fragment that left the view (its last box at the image border)
-continues only one that enters it (first box at the border), and one that vanished inside
+fragments' border contacts, a fragment that left the view (its last box at the image border,
+going out) continues only one that enters it (first box at the border, coming in), and one that vanished inside
 the view (occluded) only one that appears inside it: an object comes back the way it went.
 Two groups seen at once in different places (further apart than the linking distance over the
 frames both cover) are two objects and are never joined, not even through a later fragment.
@@ -59,7 +59,7 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     Candidate pairs and their costs are computed once on the fragments; they are then taken
     cheapest first, and a pair is joined only if the two groups it would unite (including
     earlier joins) still share at most ``max_overlap`` frames. ``at_border``: per pattern,
-    whether it starts and whether it ends at the image border (:func:`border_contacts`).
+    whether it enters and whether it leaves the view (:func:`border_contacts`).
     ``weights``: per pattern, how much of its fragment it is (its occurrences); by default
     every pattern counts one. ``transforms``: the camera's motion (``transforms[t]`` maps
     frame-0 coordinates to frame ``t``); with it, a fragment may also continue where the
@@ -197,13 +197,26 @@ def _flag_near(labels: np.ndarray, pattern_edge: np.ndarray, cluster_edge: np.nd
 
 
 def border_contacts(result: MiningResult, patterns: np.ndarray, width: int, height: int,
-                    margin: float = 0.25) -> tuple[np.ndarray, np.ndarray]:
-    """Per spatio-temporal pattern of ``patterns``: whether its first and its last occurrence
-    boxes reach the image border (:func:`reaches_border`: entering, leaving the view)."""
-    first = result.st_rows[result.st_offsets[patterns]]
-    last = result.st_rows[result.st_offsets[patterns + 1] - 1]
-    return (_occurrences_reach_border(result, first, width, height, margin),
-            _occurrences_reach_border(result, last, width, height, margin))
+                    margin: float = 0.25, lag: int = 1) -> tuple[np.ndarray, np.ndarray]:
+    """Per spatio-temporal pattern of ``patterns``: whether it enters the view (its first
+    occurrence box reaches the image border, :func:`reaches_border`, and its ``lag``-th is
+    further from the border) and whether it leaves it (its last reaches the border and its
+    ``lag``-th from the end was further). A pattern that starts at the border as its object
+    goes out (the border cuts new structures out of it) does not enter."""
+    begin, stop = result.st_offsets[patterns], result.st_offsets[patterns + 1] - 1
+    later = np.minimum(begin + lag, stop)
+    earlier = np.maximum(stop - lag, begin)
+    rows = [result.st_rows[k] for k in (begin, later, stop, earlier)]
+    first, after, last, before = (_border_distance(result, r, width, height) for r in rows)
+    return ((_occurrences_reach_border(result, rows[0], width, height, margin) & (after > first)),
+            (_occurrences_reach_border(result, rows[2], width, height, margin) & (before > last)))
+
+
+def _border_distance(result: MiningResult, rows: np.ndarray, width: float, height: float) -> np.ndarray:
+    """Distance of occurrences' box centres (``rows``) to the nearest image border."""
+    box = result.occ_box[rows].astype(float)
+    x, y = (box[:, 0] + box[:, 2]) / 2, (box[:, 1] + box[:, 3]) / 2
+    return np.minimum.reduce([x, y, width - x, height - y])
 
 
 def border_share(result: MiningResult, patterns: np.ndarray, labels: np.ndarray, width: int,

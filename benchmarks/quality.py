@@ -1,16 +1,18 @@
 #!/usr/bin/env python3
 """Benchmark: tracking quality of the defaults on synthetic videos with ground truth.
 
-Six sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
+Eight sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
 presets, seeds 0-2), the variants looked at while the robust rules were chosen ("tuned"),
 variants never looked at while choosing them ("held-out"), frames larger than the working
 size ("larger", segmented scaled down to ``max_side``), a camera that also turns and zooms
-("camera"), and objects of other shapes ("shapes": tall, round, several shapes at once). Prints,
-per video, the tracks found without being told the number of objects, each object's box precision/recall (%) and MOTA /
-IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90 or better and
-the mean MOTA / IDF1; with ``--pictures DIR``, each video's tracks as a contact sheet and a
-timeline. Graphs are cached (``--cache``), so a second run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,held-out,larger,camera,shapes] [-p name:=value]``
+("camera"), objects of other shapes ("shapes": tall, round, several shapes at once), a mix of
+all of these made later, on which the last three rules were chosen ("recent"), and another made
+after those ("fresh"). Prints, per video, the tracks found without being told the number of
+objects, each object's box precision/recall (%) and MOTA / IDF1 / HOTA; per set, the mean
+precision x recall, the share of objects at 90/90 or better and the mean MOTA / IDF1; with
+``--pictures DIR``, each video's tracks as a contact sheet and a timeline. Graphs are cached
+(``--cache``), so a second run only tracks.
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,fresh] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
@@ -78,9 +80,42 @@ SHAPES = [  # made after every rule above was chosen: objects tall and thin, rou
     ("identical, mixed shapes, noise 2, Felzenszwalb", dict(seed=66, identical=True, shape="mixed", noise=2.0),
      "felzenszwalb"),
 ]
+RECENT = [  # made after every set above; the rules for handovers, twins and border direction were chosen on them
+    ("identical, noise 2, Felzenszwalb", dict(seed=121, identical=True, noise=2.0), "felzenszwalb"),
+    ("distinct, 4 objects, turn 15 deg", dict(seed=122, objects=4, rotation=15.0), "colour"),
+    ("identical, 4 objects", dict(seed=123, identical=True, objects=4), "colour"),
+    ("distinct, disc, noise 1.5, Felzenszwalb", dict(seed=124, shape="disc", noise=1.5), "felzenszwalb"),
+    ("identical, person, 960x540, noise 2, Felzenszwalb",
+     dict(seed=125, identical=True, shape="person", width=960, height=540, noise=2.0), "felzenszwalb"),
+    ("distinct, mixed shapes, zoom 20 %, illumination 10 %", dict(seed=126, shape="mixed", zoom=0.2, illumination=0.1),
+     "colour"),
+    ("identical, 5 objects 0.8x", dict(seed=127, identical=True, objects=5, object_scale=0.8), "colour"),
+    ("distinct, 1280x720, turn 10 deg, noise 2.5, Felzenszwalb",
+     dict(seed=128, width=1280, height=720, rotation=10.0, noise=2.5), "felzenszwalb"),
+    ("identical, illumination 12 %, noise 1, Felzenszwalb",
+     dict(seed=129, identical=True, illumination=0.12, noise=1.0), "felzenszwalb"),
+    ("distinct, 320x240", dict(seed=130, width=320, height=240), "colour"),
+    ("identical, disc, noise 2, Felzenszwalb", dict(seed=131, identical=True, shape="disc", noise=2.0), "felzenszwalb"),
+    ("distinct, 800x600, zoom 25 %, noise 2, Felzenszwalb", dict(seed=132, width=800, height=600, zoom=0.25, noise=2.0),
+     "felzenszwalb"),
+]
+FRESH = [  # made after every rule was chosen, never tuned on
+    ("identical, 4 objects, noise 1.5, Felzenszwalb", dict(seed=141, identical=True, objects=4, noise=1.5),
+     "felzenszwalb"),
+    ("distinct, person, turn 10 deg", dict(seed=142, shape="person", rotation=10.0), "colour"),
+    ("identical, disc, 960x540", dict(seed=143, identical=True, shape="disc", width=960, height=540), "colour"),
+    ("identical, mixed shapes, noise 2, zoom 15 %, Felzenszwalb",
+     dict(seed=144, identical=True, shape="mixed", noise=2.0, zoom=0.15), "felzenszwalb"),
+    ("distinct, 5 objects, noise 2, Felzenszwalb", dict(seed=145, objects=5, noise=2.0), "felzenszwalb"),
+    ("identical, objects 1.2x, illumination 10 %", dict(seed=146, identical=True, object_scale=1.2, illumination=0.1),
+     "colour"),
+    ("identical, 1280x720, noise 2, Felzenszwalb", dict(seed=147, identical=True, width=1280, height=720, noise=2.0),
+     "felzenszwalb"),
+    ("distinct, 400x300, turn 20 deg", dict(seed=148, width=400, height=300, rotation=20.0), "colour"),
+]
 FELZENSZWALB_ONLY = ("k", "sigma", "min_size", "threshold", "connectivity")  # no effect on exact-colour regions
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
-        "shapes": SHAPES}
+        "shapes": SHAPES, "recent": RECENT, "fresh": FRESH}
 
 
 def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None = None,

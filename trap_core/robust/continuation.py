@@ -12,9 +12,8 @@ one place) before it follows its own: :func:`join_handovers` makes the two track
 """
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
-
 import dataclasses
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
@@ -89,12 +88,12 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
                 continue
             rows = later.frames > end
             rows &= ~repeats_others(later, [t for k, t in enumerate(out) if k not in (slot, other)], min_iou)
-            after = later.frames[rows]
-            if after.size < window or after[0] > end + window:
+            after = np.flatnonzero(rows)
+            if after.size < window or later.frames[after[0]] > end + window:
                 continue
             velocity, origin = line
-            position = box_centres(later.boxes[rows][0])
-            error = float(np.linalg.norm(position - (origin + velocity * after[0])))
+            predicted = origin + velocity * later.frames[after[0]]
+            error = float(np.linalg.norm(box_centres(later.boxes[after[0]]) - predicted))
             if error <= best_error:
                 best, best_error, best_rows = other, error, rows
         if best is None:

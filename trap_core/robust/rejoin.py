@@ -13,8 +13,9 @@ closest first, and a joined cluster can no longer take a fragment that overlaps 
 keeps look-alike objects apart. A fragment that starts right where and when another ends
 is a candidate even without shared structures (noise can change them all at once). With the
 fragments' border contacts, a fragment that left the view (its last box at the image border,
-going out) continues only one that enters it (first box at the border, coming in), and one that vanished inside
-the view (occluded) only one that appears inside it: an object comes back the way it went.
+going out) continues only one that enters it (first box at the border, coming in), and one
+that vanished inside the view (occluded) only one that appears inside it: an object comes back
+the way it went.
 Two groups seen at once in different places (further apart than the linking distance over the
 frames both cover) are two objects and are never joined, not even through a later fragment.
 Nor is a fragment joined to a group when it goes along with other clusters (in the same place,

@@ -9,9 +9,9 @@ size ("larger", segmented scaled down to ``max_side``), a camera that also turns
 all of these made later, on which the last three rules were chosen ("recent"), and another made
 after those ("fresh"). Prints, per video, the tracks found without being told the number of
 objects, each object's box precision/recall (%) and MOTA / IDF1 / HOTA; per set, the mean
-precision x recall, the share of objects at 90/90 or better and the mean MOTA / IDF1; with
-``--pictures DIR``, each video's tracks as a contact sheet and a timeline. Graphs are cached
-(``--cache``), so a second run only tracks.
+precision x recall, the share of objects at 90/90 or better and the mean MOTA / IDF1, and that
+share over all sets run; with ``--pictures DIR``, each video's tracks as a contact sheet and a
+timeline. Graphs are cached (``--cache``), so a second run only tracks.
 Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,fresh] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
@@ -163,6 +163,7 @@ def main() -> None:
     parser.add_argument("-p", dest="overrides", action="append", default=[], type=parameter_assignment,
                         metavar="NAME:=VALUE", help="parameter for every run (as process_bag's -p)")
     args = parser.parse_args()
+    all_good: list[bool] = []
     for name in args.sets.split(","):
         videos = SETS[name]
         print(f"\n### {name}\n\n| video | tracks / objects | per object P/R % | MOTA | IDF1 | HOTA | s |")
@@ -189,6 +190,8 @@ def main() -> None:
                   f"{scores['IDF1']:.2f} | {scores['HOTA']:.2f} | {seconds:.1f} |", flush=True)
         print(f"\n{name}: mean P*R {np.mean(products):.3f}, objects at 90/90 {sum(good)}/{len(good)}, "
               f"mean MOTA {np.mean(mota):.2f}, mean IDF1 {np.mean(id_f1):.2f}")
+        all_good += good
+    print(f"\nall sets: objects at 90/90 {sum(all_good)}/{len(all_good)}")
 
 
 if __name__ == "__main__":

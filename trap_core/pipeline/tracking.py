@@ -117,6 +117,10 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
             built = fill_gaps(built, params.tau)
         return built
 
+    def gaps_filled(tracks: list[Track]) -> list[Track]:
+        """The tracks with their gaps filled again after a rule removed or appended boxes."""
+        return [fill_gaps(t, params.tau) for t in tracks] if params.fill_gaps else tracks
+
     tracks = [track_of(cluster, track_id) for track_id, cluster in enumerate(selected, start=1)]
     if robust and params.one_track:
         tracks = merge_duplicates(tracks, params.tau)
@@ -129,18 +133,14 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=params.groups, patience=params.tau)
     if robust and params.one_track:
-        tracks = [drop_strays(t, max(3, params.tau // 3)) for t in tracks]
-        if params.fill_gaps:
-            tracks = [fill_gaps(t, params.tau) for t in tracks]
+        tracks = gaps_filled([drop_strays(t, max(3, params.tau // 3)) for t in tracks])
         alike = lookalike_tracks(tracks, labels, mined.st_pattern[clustered], occurrences, params.rejoin_similarity)
         tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
         tracks = drop_shared_stretches(tracks, n_frames, params.tau, max(3, params.tau // 2))
         spare = np.flatnonzero((summary.length >= params.tau) & (True if moving is None else moving))
         tracks = continue_tracks(tracks, summary, spare[~np.isin(spare, selected)], n_frames, max(3, params.tau // 2),
                                  params.eps, lambda cluster: track_of(cluster, 0))
-        tracks = join_handovers(tracks, n_frames, max(3, params.tau // 2), params.eps)
-        if params.fill_gaps:
-            tracks = [fill_gaps(t, params.tau) for t in tracks]
+        tracks = gaps_filled(join_handovers(tracks, n_frames, max(3, params.tau // 2), params.eps))
         if params.size_jump:  # the continuations' boxes were not sized against their tracks yet
             tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau, groups=False)
     if robust and params.to_border:

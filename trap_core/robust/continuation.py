@@ -82,16 +82,19 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
         current = out[slot]
         end = int(current.frames[-1])
         line = _motion_at_end(current, window) if end < n_frames - window else None
+        if line is None:
+            slot += 1
+            continue
+        velocity, origin = line
         best, best_error, best_rows = None, reach, None
         for other, later in enumerate(out):
-            if line is None or other == slot or abs(int(later.frames[0]) - end) > window:
+            if other == slot or abs(int(later.frames[0]) - end) > window:
                 continue
             rows = later.frames > end
             rows &= ~repeats_others(later, [t for k, t in enumerate(out) if k not in (slot, other)], min_iou)
             after = np.flatnonzero(rows)
             if after.size < window or later.frames[after[0]] > end + window:
                 continue
-            velocity, origin = line
             predicted = origin + velocity * later.frames[after[0]]
             error = float(np.linalg.norm(box_centres(later.boxes[after[0]]) - predicted))
             if error <= best_error:

@@ -1,5 +1,5 @@
 """``ros2 run trap_ros process_bag BAG``: the bag reader, segmentation and mining nodes in one
-process on a multi-threaded executor; results written to ``--out``:
+process, each spun in its own thread; results written to ``--out``:
 
 - ``tracks.mcap``: every output topic (detections, tracks, trajectories);
 - ``tracks.txt``: MOTChallenge rows ``frame,id,x,y,w,h,conf,-1,-1,-1`` (frame 1-based);
@@ -20,7 +20,6 @@ from pathlib import Path
 
 import rclpy
 import yaml
-from rclpy.executors import MultiThreadedExecutor
 from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
 
@@ -34,6 +33,7 @@ from trap_ros.memory import limit_malloc_arenas
 from trap_ros.mining_node import MiningNode
 from trap_ros.recording import write_results_bag
 from trap_ros.segmentation_node import SegmentationNode
+from trap_ros.spinning import NodeSpinners
 
 READER_PARAMETERS = ("bag", "topic", "rate", "window", "stall_timeout", "publish_markers")
 
@@ -115,14 +115,11 @@ def _main() -> int:
         overrides = [Parameter("n_objects", value=args.objects)] if args.objects is not None else []
         mining = MiningNode(parameter_overrides=overrides)
         nodes.append(mining)
-        executor = MultiThreadedExecutor(num_threads=4)
-        for node in nodes:
-            executor.add_node(node)
+        spinners = NodeSpinners(nodes)
         meter = Progress(reader.total, "process_bag")
         start = time.perf_counter()
         interrupted = False
-        spinner = threading.Thread(target=executor.spin, name="trap-executor", daemon=True)
-        spinner.start()
+        spinners.start()
         reader.start()
         while not mining.done.wait(timeout=0.2) and not interrupt.is_set():
             if reader.error and reader.finished.is_set():
@@ -141,8 +138,7 @@ def _main() -> int:
             _await_tracking(mining, interrupt)
         meter.advance(mining.received - meter.done)
         meter.finish()
-        executor.shutdown(timeout_sec=5)
-        spinner.join(timeout=5)  # the nodes are destroyed below: not while a wait still holds them
+        spinners.stop()  # the nodes are destroyed below: not while a callback may still run
         seconds = {"total": time.perf_counter() - start, **(mining.result.seconds if mining.result else {})}
         run = BagRun(reader.stream.topic, mining.received, mining.regions / max(mining.received, 1), mining.result,
                      seconds, {}, interrupted)
@@ -168,7 +164,7 @@ def _main() -> int:
 
 
 def main() -> None:
-    # Several threads (reader, executor, segmentation pool) hand the GIL to each other per frame;
+    # Several threads (reader, node spinners, segmentation pool) hand the GIL to each other per frame;
     # with the default 5 ms switch interval they queue behind each other (measured: 7 vs 45 fps).
     sys.setswitchinterval(0.0005)
     limit_malloc_arenas()

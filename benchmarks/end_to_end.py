@@ -135,7 +135,9 @@ def main() -> None:
     scaling = []
     for frames in ((100, 721, 2000) if args.quick else (100, 721, 2000, 5600)):
         done = subprocess.run([sys.executable, __file__, "--scaling-worker", str(frames)], capture_output=True,
-                              text=True, check=True)
+                              text=True)
+        if done.returncode:
+            sys.exit(f"end_to_end: the {frames}-frame scaling run failed: {done.stderr.strip()[-2000:]}")
         scaling.append(json.loads(done.stdout.strip().splitlines()[-1]))
     columns = [k for k in results if not k.endswith("trackers")]
     names = list(dict.fromkeys(n for k in columns for n in results[k]))

@@ -711,6 +711,47 @@ def test_a_track_that_ends_with_the_stretch_is_no_evidence_that_the_other_turned
     assert len(out[0]) == 160 and out[1].frames.tolist() == list(range(60))
 
 
+def _bounce_and_pass(n: int = 100, at: int = 50) -> tuple[np.ndarray, np.ndarray]:
+    """Boxes of two look-alikes that touch at frame ``at``: ``bounced`` goes up, then down;
+    ``passing`` comes from the left and goes straight on, where ``bounced`` was going."""
+    t = np.arange(n, dtype=float)
+    bounced = np.column_stack([300 + t, 300 - 2 * np.minimum(t, at) + 3 * np.maximum(t - at, 0),
+                               np.full(n, 40.0), np.full(n, 30.0)])
+    passing = np.column_stack([bounced[at, 0] + 3 * (t - at), np.full(n, bounced[at, 1] - 25.0), np.full(n, 40.0),
+                               np.full(n, 30.0)])
+    return bounced, passing
+
+
+def _cover(n_frames: int, *tracks) -> object:
+    """A cluster summary whose clusters cover the frames of ``tracks`` (what the rule reads)."""
+    from trap_core.clustering import ClusterSummary
+    covered = np.zeros((len(tracks), n_frames), dtype=bool)
+    for row, t in enumerate(tracks):
+        covered[row, t.frames] = True
+    return ClusterSummary(covered, np.ones(len(tracks)), np.ones(len(tracks)), None)
+
+
+def test_a_stretch_on_a_lookalike_is_mended_by_a_cluster_that_held_the_object_elsewhere() -> None:
+    """Track 2 holds the bounced look-alike until they touch (frame 50), then the passing one;
+    track 1 holds the bounced one all along. A cluster left out holds the passing one all along:
+    its boxes replace track 2's first 50. The same cluster on the bounced one's boxes
+    (nothing new), or a second candidate that mends track 1 too, changes nothing."""
+    from trap_core.robust import mend_shared_stretches
+    bounced, passing = _bounce_and_pass()
+    frames = np.arange(100)
+    tracks = [_as_track(1, frames, bounced), _as_track(2, frames, np.vstack([bounced[:50], passing[50:]]))]
+    candidates = [_as_track(0, frames, passing)]
+    out = mend_shared_stretches(tracks, _cover(100, *candidates), np.arange(1), 100, 25, lambda c: candidates[c])
+    np.testing.assert_allclose(out[0].boxes, bounced)
+    np.testing.assert_allclose(out[1].boxes, passing)
+    mixed = [*candidates, _as_track(0, frames, np.vstack([passing[:50], bounced[50:]]))]  # traded: mends track 1
+    tied = mend_shared_stretches(tracks, _cover(100, *mixed), np.arange(2), 100, 25, lambda c: mixed[c])
+    np.testing.assert_allclose(tied[1].boxes, tracks[1].boxes)
+    seen = [*tracks, _as_track(3, frames[:50], passing[:50])]  # the passing one was tracked: nothing to mend
+    kept = mend_shared_stretches(seen, _cover(100, *candidates), np.arange(1), 100, 25, lambda c: candidates[c])
+    np.testing.assert_allclose(kept[1].boxes, tracks[1].boxes)
+
+
 def test_a_twin_lends_its_track_only_frames_the_track_lacks_at_the_usual_size_and_no_other_tracks() -> None:
     """The kept track holds frames 0-59 of a look-alike; its twin holds the same object over
     frames 0-99, but with the pair's box (twice as wide) in 90-99, and on the other look-alike

@@ -9,6 +9,11 @@ rejoined to it. :func:`continue_tracks` appends it.
 When such a cluster was long enough to be selected, the object's path after the meeting is a
 track of its own, often starting on the other object for a few frames (while the two are in
 one place) before it follows its own: :func:`join_handovers` makes the two tracks one.
+
+A track's cluster can also hold one object before such a meeting and the other after it (or the
+reverse): over a stretch it repeats the other object's track, while its own object has no track.
+A cluster left out that holds the track's object beside the stretch and, during it, is elsewhere
+saw where that object went: :func:`mend_shared_stretches` takes its boxes for the stretch.
 """
 from __future__ import annotations
 
@@ -17,8 +22,8 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, Track, box_centres, centre_path, in_rows, with_frames
-from trap_core.robust.duplicates import repeats_others
+from trap_core.clustering import ClusterSummary, Track, box_centres, box_iou, centre_path, in_rows, with_frames
+from trap_core.robust.duplicates import repeats_others, same_boxes, shared_stretches
 from trap_core.robust.motion import straight_line
 
 
@@ -107,6 +112,86 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
         del out[best]
         slot = 0  # the joined track may now be followed by another
     return [dataclasses.replace(t, track_id=i) for i, t in enumerate(out, start=1)]
+
+
+def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, candidates: np.ndarray, n_frames: int,
+                          min_frames: int, build: Callable[[int], Track], min_iou: float = 0.5,
+                          min_inside: float = 0.9, min_share: float = 0.8) -> list[Track]:
+    """Tracks whose stretch on another track's object is replaced by the boxes of a cluster of
+    ``candidates`` that held their own object meanwhile.
+
+    A stretch is shared by two tracks as in :func:`trap_core.robust.drop_shared_stretches` (boxes
+    matching for at least ``min_frames`` frames). A candidate mends one of the two tracks if,
+    in the ``min_frames`` frames before or after the stretch, it holds that track's object (in
+    ``min_share`` of at least half of them where the track has a box, the test of
+    :func:`trap_core.robust.merge_duplicates`: IoU at least ``min_iou``, or one box at least
+    ``min_inside`` inside the other, as where the candidate's box takes in a look-alike still
+    touching the object), and in the stretch it has boxes that repeat no track's in at least half its frames:
+    the object was elsewhere, where nothing tracked it. The track's boxes in the stretch are
+    replaced by those, and the other track keeps the stretch. Where candidates mend both
+    tracks, neither is changed: nothing tells which went on with the object.
+    """
+    out = list(tracks)
+    boxes = np.full((len(out), n_frames, 4), np.nan)
+    for slot, t in enumerate(out):
+        boxes[slot, t.frames] = t.boxes
+    built: dict[int, tuple[Track, np.ndarray]] = {}  # per candidate: its track, its box per frame
+
+    def boxes_of(cluster: int) -> np.ndarray:
+        if cluster not in built:
+            track = build(cluster)
+            built[cluster] = (track, np.full((n_frames, 4), np.nan))
+            built[cluster][1][track.frames] = track.boxes
+        return built[cluster][1]
+
+    for a in range(len(out)):
+        for b in range(a + 1, len(out)):
+            for start, end in shared_stretches(boxes[a], boxes[b], min_frames, min_iou):
+                menders = {slot: _menders(boxes, slot, (start, end), summary, candidates, min_frames, boxes_of,
+                                          (min_iou, min_inside, min_share)) for slot in (a, b)}
+                if bool(menders[a]) == bool(menders[b]):
+                    continue
+                slot = a if menders[a] else b
+                cluster, frames = max(menders[slot].items(), key=lambda item: item[1].size)
+                lent = in_rows(built[cluster][0], np.isin(built[cluster][0].frames, frames))
+                kept = in_rows(out[slot], (out[slot].frames < start) | (out[slot].frames > end))
+                out[slot] = with_frames(kept, lent.frames, lent.boxes, lent.score, lent.points)
+                boxes[slot, start:end + 1] = np.nan
+                boxes[slot, lent.frames] = lent.boxes
+    return out
+
+
+def _menders(boxes: np.ndarray, slot: int, stretch_ends: tuple[int, int], summary: ClusterSummary,
+             candidates: np.ndarray, window: int, boxes_of: Callable[[int], np.ndarray],
+             thresholds: tuple[float, float, float]) -> dict[int, np.ndarray]:
+    """The candidates that mend track ``slot``'s stretch (first and last frame ``stretch_ends``)
+    given the ``window`` frames beside it and ``thresholds`` ``min_iou, min_inside, min_share``
+    (see :func:`mend_shared_stretches`), each with the stretch frames it lends."""
+    start, end = stretch_ends
+    min_iou, min_inside, min_share = thresholds
+    n_frames = boxes.shape[1]
+    stretch = np.arange(start, end + 1)
+    own = boxes[slot]
+    seen = np.flatnonzero(~np.isnan(own[:, 0]))
+    sides = (seen[seen < start][::-1], seen[seen > end])  # nearest the stretch first
+    others = np.delete(boxes, slot, axis=0)
+    menders = {}
+    for cluster in candidates.tolist():
+        if np.count_nonzero(summary.covered[cluster, stretch]) < stretch.size / 2:
+            continue
+        beside = [common for common in (side[summary.covered[cluster, side]] for side in sides)
+                  if common.size >= window / 2 and min(abs(common[0] - start), abs(common[0] - end)) <= window]
+        if not beside:
+            continue
+        lent = boxes_of(cluster)
+        if not any(np.mean(same_boxes(lent[common], own[common], min_iou, min_inside)) >= min_share
+                   for common in beside):
+            continue
+        inside = stretch[~np.isnan(lent[stretch, 0])]
+        inside = inside[~np.any(box_iou(lent[inside][None], others[:, inside]) >= min_iou, axis=0)]
+        if inside.size >= stretch.size / 2:
+            menders[cluster] = inside
+    return menders
 
 
 def _motion_at_end(track: Track, window: int) -> tuple[np.ndarray, np.ndarray] | None:

@@ -114,9 +114,14 @@ def _same_object(a: Track, b: Track, min_common: int, min_iou: float, min_inside
     common, in_a, in_b = np.intersect1d(a.frames, b.frames, assume_unique=True, return_indices=True)
     if common.size < min_common:
         return False
-    boxes_a, boxes_b = a.boxes[in_a], b.boxes[in_b]
-    same = (box_iou(boxes_a, boxes_b) >= min_iou) | (box_containment(boxes_a, boxes_b) >= min_inside)
-    return float(np.mean(same)) >= min_share
+    return float(np.mean(same_boxes(a.boxes[in_a], b.boxes[in_b], min_iou, min_inside))) >= min_share
+
+
+def same_boxes(boxes: np.ndarray, other: np.ndarray, min_iou: float, min_inside: float) -> np.ndarray:
+    """Per box: whether the two hold the same object, IoU at least ``min_iou`` or the smaller at
+    least ``min_inside`` inside the other (a box on part of it, or one on it and a look-alike
+    it touches); False where either is NaN."""
+    return (box_iou(boxes, other) >= min_iou) | (box_containment(boxes, other) >= min_inside)
 
 
 def _union(kept: Track, other: Track) -> Track:
@@ -148,7 +153,7 @@ def drop_shared_stretches(tracks: Sequence[Track], n_frames: int, min_frames: in
                 continue
             first, last = int(out[a].frames[0]), int(out[a].frames[-1])
             least = TURN * float(np.nanmedian(boxes[a, :, 2:4]))
-            for start, end in _stretches(box_iou(boxes[a], boxes[b]) >= min_iou, min_frames):
+            for start, end in shared_stretches(boxes[a], boxes[b], min_frames, min_iou):
                 ends = [at for at, inside in ((start, start > first), (end + 1, end < last)) if inside]
                 if any(_turns(boxes[a], boxes[b], at, window, least) for at in ends):
                     out[a] = in_rows(out[a], (out[a].frames < start) | (out[a].frames > end))
@@ -156,9 +161,11 @@ def drop_shared_stretches(tracks: Sequence[Track], n_frames: int, min_frames: in
     return [t for t in out if len(t)]
 
 
-def _stretches(same: np.ndarray, min_frames: int) -> list[tuple[int, int]]:
-    """First and last frame of each run of ``same`` (holes of up to ``HOLE`` frames bridged) of
-    at least ``min_frames`` frames."""
+def shared_stretches(boxes: np.ndarray, other: np.ndarray, min_frames: int, min_iou: float) -> list[tuple[int, int]]:
+    """First and last frame of each stretch where two tracks' boxes (per frame, NaN where none)
+    match with IoU at least ``min_iou``, holes of up to ``HOLE`` frames bridged, of at least
+    ``min_frames`` frames."""
+    same = box_iou(boxes, other) >= min_iou
     edges = np.diff(np.concatenate(([0], same.astype(np.int8), [0])))
     runs: list[list[int]] = []
     for begin, stop in zip(np.flatnonzero(edges == 1).tolist(), np.flatnonzero(edges == -1).tolist()):

@@ -908,6 +908,44 @@ def test_a_track_that_takes_over_where_another_ended_is_appended_to_it() -> None
     assert len(join_handovers(tracks, 100, 12, 40.0)) == 4
 
 
+def test_a_track_that_takes_over_after_a_few_frames_between_the_objects_is_appended() -> None:
+    """As above, but track 2's first two frames after track 1's end lie between the two objects
+    (50 px off track 1's motion, repeating no box): its next ten follow that motion, so the two
+    tracks are one."""
+    from trap_core.robust import join_handovers
+    t = np.arange(100, dtype=float)
+    boxes = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    below = boxes + [0.0, 100.0, 0.0, 0.0]
+    taking_over = np.vstack([below[56:60], boxes[60:62] + [0.0, 50.0, 0.0, 0.0], boxes[62:]])
+    frames = np.arange(100)
+    tracks = [_as_track(1, frames[:60], boxes[:60]), _as_track(2, frames[56:], taking_over),
+              _as_track(3, frames, below)]
+    out = join_handovers(tracks, 100, 12, 40.0)
+    assert [len(t) for t in out] == [100, 100]
+    np.testing.assert_allclose(out[0].boxes[62:], boxes[62:])
+
+
+def test_a_piece_of_a_track_on_another_tracks_object_is_dropped() -> None:
+    """Track 2 holds its own object in frames 0-39 and, after a 30-frame gap, track 1's object
+    in 70-99 (IoU 0.8, or a box inside track 1's): that piece goes. A piece on track 1's object
+    in only half its frames stays."""
+    from trap_core.robust import drop_repeated_pieces
+    t = np.arange(100, dtype=float)
+    first = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    second = first + [0.0, 100.0, 0.0, 0.0]
+    back = np.vstack([second[:40], first[70:] + [2.0, 1.0, 0.0, 0.0]])
+    frames = np.r_[0:40, 70:100]
+    tracks = [_as_track(1, np.arange(100), first), _as_track(2, frames, back)]
+    out = drop_repeated_pieces(tracks, 12)
+    assert len(out[0]) == 100 and out[1].frames.tolist() == list(range(40))
+    inside = back.copy()
+    inside[40:] = first[70:] * [1.0, 1.0, 0.5, 0.5] + [5.0, 5.0, 0.0, 0.0]
+    assert drop_repeated_pieces([tracks[0], _as_track(2, frames, inside)], 12)[1].frames.tolist() == list(range(40))
+    half = back.copy()
+    half[55:] = second[85:]
+    assert len(drop_repeated_pieces([tracks[0], _as_track(2, frames, half)], 12)[1]) == 70
+
+
 def test_boxes_that_slide_onto_something_else_and_back_are_dropped_and_a_smooth_turn_is_kept() -> None:
     """A 40 px object goes right at 3 px per frame; in frames 30-34 its box slides 10, 20, 30,
     40, 50 px down and is back at 35 (a look-alike below). Another object curves through a

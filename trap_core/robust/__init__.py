@@ -5,7 +5,7 @@ from trap_core.robust.borders import continue_to_border
 from trap_core.robust.camera import camera_transforms, cluster_world_speed, world_speed
 from trap_core.robust.continuation import continue_tracks, join_handovers, mend_shared_stretches
 from trap_core.robust.crossings import lookalike_tracks, swap_at_crossings
-from trap_core.robust.duplicates import drop_shared_stretches, extend_from_twins, merge_duplicates
+from trap_core.robust.duplicates import drop_repeated_pieces, drop_shared_stretches, extend_from_twins, merge_duplicates
 from trap_core.robust.extent import grow_boxes
 from trap_core.robust.gaps import fill_gaps
 from trap_core.robust.groups import separate_groups
@@ -15,7 +15,7 @@ from trap_core.robust.still import drop_still_regions
 from trap_core.robust.strays import drop_strays
 
 __all__ = ["border_contacts", "border_share", "camera_transforms", "cluster_world_speed", "continue_to_border",
-           "continue_tracks", "drop_shared_stretches", "drop_still_regions", "drop_strays", "extend_from_twins",
+           "continue_tracks", "drop_repeated_pieces", "drop_shared_stretches", "drop_still_regions", "drop_strays", "extend_from_twins",
            "fill_gaps", "grow_boxes", "join_handovers", "lookalike_tracks", "mend_shared_stretches", "merge_duplicates",
            "pattern_sizes",
            "reaches_border", "rejoin_fragments", "separate_groups", "split_mixed", "swap_at_crossings", "world_speed"]

@@ -76,9 +76,10 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
     The later track must start at most ``window`` frames before or after the earlier one ends;
     of its frames after that end, those where it repeats a third track's box (IoU at least
     ``min_iou``: it is still on the other object) do not count; it must keep at least ``window``
-    of them, the first at most ``window`` frames after the end, and be there at most ``reach``
-    px from where the earlier track's motion (a straight line through its last ``window`` box
-    centres) puts it. The closest such track is taken; its counted frames are appended. Ids are
+    of them, the first at most ``window`` frames after the end, and over the first ``window`` of
+    them be at most ``reach`` px (median) from where the earlier track's motion (a straight
+    line through its last ``window`` box centres) puts it: where look-alikes part, its first
+    boxes may still lie between the two. The closest such track is taken; its counted frames are appended. Ids are
     renumbered 1.. in order.
     """
     out = list(tracks)
@@ -100,8 +101,9 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
             after = np.flatnonzero(rows)
             if after.size < window or later.frames[after[0]] > end + window:
                 continue
-            predicted = origin + velocity * later.frames[after[0]]
-            error = float(np.linalg.norm(box_centres(later.boxes[after[0]]) - predicted))
+            first = after[:window]
+            predicted = origin + velocity * later.frames[first][:, None]
+            error = float(np.median(np.linalg.norm(box_centres(later.boxes[first]) - predicted, axis=1)))
             if error <= best_error:
                 best, best_error, best_rows = other, error, rows
         if best is None:

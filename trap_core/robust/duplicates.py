@@ -161,6 +161,30 @@ def drop_shared_stretches(tracks: Sequence[Track], n_frames: int, min_frames: in
     return [t for t in out if len(t)]
 
 
+def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float = 0.5, min_inside: float = 0.9,
+                         min_share: float = 0.8) -> list[Track]:
+    """Tracks without pieces that repeat other tracks' boxes; tracks left empty are dropped.
+
+    A piece is a run of a track's frames without a gap of more than ``min_gap`` frames. Where a
+    piece's boxes hold another track's object (:func:`same_boxes`) in at least ``min_share`` of
+    its frames, its object is tracked already there: a path that went on with a look-alike and
+    came back with it after a gap, which no turn shows (:func:`drop_shared_stretches` needs the
+    track's motion on both sides). Tracks are taken in order, each against the others as left.
+    """
+    out = list(tracks)
+    for slot, track in enumerate(out):
+        repeated = np.zeros(len(track), dtype=bool)
+        for other in out[:slot] + out[slot + 1:]:
+            _, mine, theirs = np.intersect1d(track.frames, other.frames, assume_unique=True, return_indices=True)
+            repeated[mine[same_boxes(track.boxes[mine], other.boxes[theirs], min_iou, min_inside)]] = True
+        keep = np.ones(len(track), dtype=bool)
+        for rows in np.split(np.arange(len(track)), np.flatnonzero(np.diff(track.frames) > min_gap) + 1):
+            if np.mean(repeated[rows]) >= min_share:
+                keep[rows] = False
+        out[slot] = in_rows(track, keep)
+    return [t for t in out if len(t)]
+
+
 def shared_stretches(boxes: np.ndarray, other: np.ndarray, min_frames: int, min_iou: float) -> list[tuple[int, int]]:
     """First and last frame of each stretch where two tracks' boxes (per frame, NaN where none)
     match with IoU at least ``min_iou``, holes of up to ``HOLE`` frames bridged, of at least

@@ -1,18 +1,19 @@
 #!/usr/bin/env python3
 """Benchmark: tracking quality of the defaults on synthetic videos with ground truth.
 
-Eight sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
-presets, seeds 0-2), the variants looked at while the robust rules were chosen ("tuned"),
-variants never looked at while choosing them ("held-out"), frames larger than the working
-size ("larger", segmented scaled down to ``max_side``), a camera that also turns and zooms
-("camera"), objects of other shapes ("shapes": tall, round, several shapes at once), a mix of
-all of these made later, on which the last three rules were chosen ("recent"), and another made
-after those ("fresh"). Prints, per video, the tracks found without being told the number of
-objects, each object's box precision/recall (%) and MOTA / IDF1 / HOTA; per set, the mean
+Ten sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
+presets, seeds 0-2), the variants looked at while the robust rules were chosen ("tuned"), variants
+never looked at while choosing them ("held-out"), frames larger than the working size ("larger",
+segmented scaled down to ``max_side``), a camera that also turns and zooms ("camera"), objects of
+other shapes ("shapes": tall, round, several shapes at once), a mix of all of these made later, on
+which the last three rules were chosen ("recent"), another made after those ("fresh"), one with
+more look-alikes ("newest") on which the three rules after those were checked, and a last one made
+after every rule ("untouched"). Prints, per video, the tracks found without being told the number
+of objects, each object's box precision/recall (%) and MOTA / IDF1 / HOTA; per set, the mean
 precision x recall, the share of objects at 90/90 or better and the mean MOTA / IDF1, and that
 share over all sets run; with ``--pictures DIR``, each video's tracks as a contact sheet and a
 timeline. Graphs are cached (``--cache``), so a second run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,fresh] [-p name:=value]``
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,untouched] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
@@ -113,9 +114,41 @@ FRESH = [  # made after every rule was chosen, never tuned on
      "felzenszwalb"),
     ("distinct, 400x300, turn 20 deg", dict(seed=148, width=400, height=300, rotation=20.0), "colour"),
 ]
+NEWEST = [  # made before the shared-stretch mending, handover median and repeated-piece rules
+    ("identical, 4 objects, turn 10 deg, noise 1, Felzenszwalb",
+     dict(seed=161, identical=True, objects=4, rotation=10.0, noise=1.0), "felzenszwalb"),
+    ("identical, mixed shapes, 800x600", dict(seed=162, identical=True, shape="mixed", width=800, height=600),
+     "colour"),
+    ("distinct, disc, zoom 20 %, noise 2, Felzenszwalb", dict(seed=163, shape="disc", zoom=0.2, noise=2.0),
+     "felzenszwalb"),
+    ("identical, person, illumination 10 %", dict(seed=164, identical=True, shape="person", illumination=0.1),
+     "colour"),
+    ("identical, 5 objects, 960x540", dict(seed=165, identical=True, objects=5, width=960, height=540), "colour"),
+    ("distinct, 4 objects, mixed shapes, noise 1.5, Felzenszwalb",
+     dict(seed=166, objects=4, shape="mixed", noise=1.5), "felzenszwalb"),
+    ("identical, objects 0.8x, turn 20 deg", dict(seed=167, identical=True, object_scale=0.8, rotation=20.0),
+     "colour"),
+    ("identical, disc, 4 objects, noise 1, Felzenszwalb",
+     dict(seed=168, identical=True, shape="disc", objects=4, noise=1.0), "felzenszwalb"),
+]
+UNTOUCHED = [  # made after every rule, never tuned on
+    ("distinct, 1024x768, noise 1.5, Felzenszwalb", dict(seed=171, width=1024, height=768, noise=1.5), "felzenszwalb"),
+    ("identical, 4 objects, zoom 15 %", dict(seed=172, identical=True, objects=4, zoom=0.15), "colour"),
+    ("identical, person, 4 objects", dict(seed=173, identical=True, shape="person", objects=4), "colour"),
+    ("distinct, disc, turn 15 deg, illumination 10 %", dict(seed=174, shape="disc", rotation=15.0, illumination=0.1),
+     "colour"),
+    ("identical, objects 1.3x, noise 2, Felzenszwalb", dict(seed=175, identical=True, object_scale=1.3, noise=2.0),
+     "felzenszwalb"),
+    ("identical, mixed shapes, 5 objects, 800x600",
+     dict(seed=176, identical=True, shape="mixed", objects=5, width=800, height=600), "colour"),
+    ("distinct, 5 objects, zoom 10 %, turn 10 deg", dict(seed=177, objects=5, zoom=0.1, rotation=10.0), "colour"),
+    ("identical, 640x360, noise 1, Felzenszwalb", dict(seed=178, identical=True, width=640, height=360, noise=1.0),
+     "felzenszwalb"),
+]
 FELZENSZWALB_ONLY = ("k", "sigma", "min_size", "threshold", "connectivity")  # no effect on exact-colour regions
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
-        "shapes": SHAPES, "recent": RECENT, "fresh": FRESH}
+        "shapes": SHAPES, "recent": RECENT, "fresh": FRESH,
+        "newest": NEWEST, "untouched": UNTOUCHED}
 
 
 def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None = None,

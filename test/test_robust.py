@@ -723,12 +723,11 @@ def _bounce_and_pass(n: int = 100, at: int = 50) -> tuple[np.ndarray, np.ndarray
 
 
 def _cover(n_frames: int, *tracks) -> object:
-    """A cluster summary whose clusters cover the frames of ``tracks`` (what the rule reads)."""
-    from trap_core.clustering import ClusterSummary
-    covered = np.zeros((len(tracks), n_frames), dtype=bool)
-    for row, t in enumerate(tracks):
-        covered[row, t.frames] = True
-    return ClusterSummary(covered, np.ones(len(tracks)), np.ones(len(tracks)), None)
+    """A cluster summary whose clusters cover the frames of ``tracks``, each cluster's path at
+    its track's box centres."""
+    from trap_core.clustering import summarise
+    paths = _paths([(int(t.frames[0]), t.boxes[:, :2] + t.boxes[:, 2:4] / 2) for t in tracks])
+    return summarise(np.arange(len(tracks)), paths, np.ones(len(tracks)), n_frames)
 
 
 def test_a_stretch_on_a_lookalike_is_mended_by_a_cluster_that_held_the_object_elsewhere() -> None:

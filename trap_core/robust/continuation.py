@@ -179,11 +179,15 @@ def _menders(boxes: np.ndarray, slot: int, stretch_ends: tuple[int, int], summar
     others = np.delete(boxes, slot, axis=0)
     menders = {}
     for cluster in candidates.tolist():
-        if np.count_nonzero(summary.covered[cluster, stretch]) < stretch.size / 2:
+        inside = stretch[summary.covered[cluster, stretch]]
+        if inside.size < stretch.size / 2 or np.count_nonzero(~np.any(_within(
+                summary.paths.at(cluster, inside), others[:, inside]), axis=0)) < stretch.size / 2:
             continue
         beside = [common for common in (side[summary.covered[cluster, side]] for side in sides)
                   if common.size >= window / 2 and min(abs(common[0] - start), abs(common[0] - end)) <= window]
-        if not beside:
+        beside = [common for common in beside  # its patterns' mean position in the track's box
+                  if np.mean(_within(summary.paths.at(cluster, common), own[common])) >= min_share]
+        if not beside:  # (cheap tests on the mean positions first: building a candidate's boxes is not)
             continue
         lent = boxes_of(cluster)
         if not any(np.mean(same_boxes(lent[common], own[common], min_iou, min_inside)) >= min_share
@@ -194,6 +198,11 @@ def _menders(boxes: np.ndarray, slot: int, stretch_ends: tuple[int, int], summar
         if inside.size >= stretch.size / 2:
             menders[cluster] = inside
     return menders
+
+
+def _within(points: np.ndarray, boxes: np.ndarray) -> np.ndarray:
+    """Whether each point lies in its box (``(x, y, w, h)``, broadcast); False where the box is NaN."""
+    return np.all((points >= boxes[..., :2]) & (points <= boxes[..., :2] + boxes[..., 2:4]), axis=-1)
 
 
 def _motion_at_end(track: Track, window: int) -> tuple[np.ndarray, np.ndarray] | None:

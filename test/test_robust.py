@@ -854,6 +854,25 @@ def test_lookalike_tracks_are_those_of_clusters_with_the_same_structures() -> No
     assert alike.tolist() == [[True, True, False], [True, True, False], [False, False, True]]
 
 
+def test_lookalikes_that_traded_objects_after_holding_one_together_get_them_back() -> None:
+    """Two look-alikes cross (meeting while their centres are closer than 40 px, frames 44-56);
+    track 2 moves onto track 1's object at frame 48, both hold it until 53, then track 1 goes on
+    with track 2's object: no single frame of the meeting parts them, the lines before and after
+    it do."""
+    from trap_core.robust import swap_at_crossings
+    t = np.arange(100, dtype=float)
+    right = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    left = np.column_stack([300 - 2 * t, np.full(100, 230.0), np.full(100, 40.0), np.full(100, 30.0)])
+    first = np.vstack([right[:54], left[54:]])
+    second = np.vstack([left[:48], right[48:]])
+    frames = np.arange(100)
+    out = swap_at_crossings([_as_track(1, frames, first), _as_track(2, frames, second)], 100, 8,
+                            np.ones((2, 2), dtype=bool))
+    away = np.abs(t - 50) > 6
+    np.testing.assert_allclose(out[0].boxes[away], right[away])
+    np.testing.assert_allclose(out[1].boxes[away], left[away])
+
+
 def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_ended() -> None:
     """The track holds frames 0-59 of an object moving right; cluster 0 goes on from frame 62
     where that motion puts it, cluster 1 starts at the same time 185 px away, cluster 2 goes on

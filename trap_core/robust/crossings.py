@@ -45,8 +45,10 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
     jump spread over the window), summed over both tracks. The continuations are exchanged at
     the frame where that helps most, if there the tracks' own pairing breaks their motion by
     more than ``TURN`` times the smaller size per frame (a turn, not jitter) and the exchanged
-    pairing does not, by at most half as much (both go on as they were going). Only tracks
-    ``alike[a, b]`` (:func:`lookalike_tracks`) trade.
+    pairing does not, by at most half as much (both go on as they were going). Where no frame
+    passes, the same test on the lines before and after the whole meeting exchanges them at its
+    middle frame (:func:`_across_meeting`). Only tracks ``alike[a, b]`` (:func:`lookalike_tracks`)
+    trade.
     """
     out = list(tracks)
     centres = np.array([centre_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 2)
@@ -60,6 +62,8 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
             edges = np.diff(np.concatenate(([0], close.astype(np.int8), [0])))
             for start, stop in zip(np.flatnonzero(edges == 1).tolist(), np.flatnonzero(edges == -1).tolist()):
                 cut = _best_cut(centres[a], centres[b], range(start, stop + 1), window, TURN * size)
+                if cut is None:
+                    cut = _across_meeting(centres[a], centres[b], start, stop, window, TURN * size)
                 if cut is None:
                     continue
                 out[a], out[b] = _exchanged(out[a], out[b], cut)
@@ -80,6 +84,22 @@ def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, l
         if exchanged <= least < kept and 2 * exchanged <= kept and kept - exchanged > best_gain:
             best, best_gain = cut, kept - exchanged
     return best
+
+
+def _across_meeting(first: np.ndarray, second: np.ndarray, start: int, stop: int, window: int, least: float
+                    ) -> int | None:
+    """The meeting's middle frame if exchanging there helps by the test of :func:`_best_cut`,
+    judged from the lines over ``window`` frames before the meeting and after it (the tracks
+    may hold one object together in it, so that no single frame of it parts them), else None."""
+    before = [straight_line(path, np.arange(max(start - window, 0), start)) for path in (first, second)]
+    after = [straight_line(path, np.arange(stop, min(stop + window, len(path)))) for path in (first, second)]
+    if any(line is None for line in before + after):
+        return None
+    middle = (start + stop) // 2
+    spread = window + stop - start
+    kept = _break(before[0], after[0], middle, spread) + _break(before[1], after[1], middle, spread)
+    exchanged = _break(before[0], after[1], middle, spread) + _break(before[1], after[0], middle, spread)
+    return middle if exchanged <= least < kept and 2 * exchanged <= kept else None
 
 
 def _break(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, np.ndarray], cut: int,

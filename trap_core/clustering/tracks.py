@@ -54,6 +54,13 @@ def box_centres(boxes: np.ndarray) -> np.ndarray:
     return boxes[..., :2] + boxes[..., 2:4] / 2
 
 
+def box_path(track: Track, length: int) -> np.ndarray:
+    """(length, 4) the track's box in each frame, NaN where it has none."""
+    boxes = np.full((length, 4), np.nan)
+    boxes[track.frames] = track.boxes
+    return boxes
+
+
 def centre_path(track: Track, length: int) -> np.ndarray:
     """(length, 2) the track's box centre in each frame, NaN where it has no box."""
     centres = np.full((length, 2), np.nan)

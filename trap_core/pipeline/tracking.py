@@ -15,10 +15,10 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed, continue_to_border,
-                              continue_tracks, drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_strays,
-                              extend_from_twins, fill_gaps, grow_boxes, join_handovers, lookalike_tracks,
-                              mend_shared_stretches, merge_duplicates, pattern_sizes, rejoin_fragments, separate_groups, split_mixed,
-                              swap_at_crossings, world_speed)
+                              continue_tracks, drop_repeated_pieces, drop_shared_stretches, drop_still_regions,
+                              drop_strays, extend_from_twins, fill_gaps, grow_boxes, join_handovers, lookalike_tracks,
+                              mend_shared_stretches, merge_duplicates, pattern_sizes, rejoin_fragments, separate_groups,
+                              split_mixed, swap_at_crossings, world_speed)
 
 
 @dataclass
@@ -138,11 +138,13 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
         spare = np.flatnonzero((summary.length >= params.tau) & (True if moving is None else moving))
         spare = spare[~np.isin(spare, selected)]
-        tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, lambda cluster: track_of(cluster, 0))
+
+        def spare_track(cluster: int) -> Track:
+            return track_of(cluster, 0)
+        tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, spare_track)
         tracks = drop_shared_stretches(tracks, n_frames, params.tau, max(3, params.tau // 2))
         tracks = drop_repeated_pieces(tracks, max(3, params.tau // 2))
-        tracks = continue_tracks(tracks, summary, spare, n_frames, max(3, params.tau // 2), params.eps,
-                                 lambda cluster: track_of(cluster, 0))
+        tracks = continue_tracks(tracks, summary, spare, n_frames, max(3, params.tau // 2), params.eps, spare_track)
         tracks = gaps_filled(join_handovers(tracks, n_frames, max(3, params.tau // 2), params.eps))
         if params.size_jump:  # the continuations' boxes were not sized against their tracks yet
             tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau, groups=False)

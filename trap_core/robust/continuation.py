@@ -22,7 +22,8 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, Track, box_centres, box_iou, centre_path, in_rows, with_frames
+from trap_core.clustering import (ClusterSummary, Track, box_centres, box_iou, box_path, centre_path, in_rows,
+                                  with_frames)
 from trap_core.robust.duplicates import repeats_others, same_boxes, shared_stretches
 from trap_core.robust.motion import straight_line
 
@@ -134,16 +135,13 @@ def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, cand
     tracks, neither is changed: nothing tells which went on with the object.
     """
     out = list(tracks)
-    boxes = np.full((len(out), n_frames, 4), np.nan)
-    for slot, t in enumerate(out):
-        boxes[slot, t.frames] = t.boxes
+    boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
     built: dict[int, tuple[Track, np.ndarray]] = {}  # per candidate: its track, its box per frame
 
     def boxes_of(cluster: int) -> np.ndarray:
         if cluster not in built:
             track = build(cluster)
-            built[cluster] = (track, np.full((n_frames, 4), np.nan))
-            built[cluster][1][track.frames] = track.boxes
+            built[cluster] = (track, box_path(track, n_frames))
         return built[cluster][1]
 
     for a in range(len(out)):

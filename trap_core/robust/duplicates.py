@@ -27,7 +27,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, box_centres, box_containment, box_iou, in_rows, with_frames
+from trap_core.clustering import Track, box_centres, box_containment, box_iou, box_path, in_rows, with_frames
 from trap_core.robust.rejoin import reaches_border
 
 TURN = 0.1  # a velocity change of this share of the box size per frame is a turn, not jitter
@@ -100,13 +100,17 @@ def _back_through_border(kept: Track, twin: Track, view: tuple[float, float]) ->
     return fine
 
 
-def repeats_others(track: Track, others: Sequence[Track], min_iou: float) -> np.ndarray:
+def repeats_others(track: Track, others: Sequence[Track], min_iou: float, min_inside: float | None = None
+                   ) -> np.ndarray:
     """Per frame of ``track``: whether its box repeats one of ``others``' there (IoU at least
-    ``min_iou``)."""
+    ``min_iou``; with ``min_inside``, or the test of :func:`same_boxes`)."""
     repeated = np.zeros(len(track), dtype=bool)
     for other in others:
         _, mine, theirs = np.intersect1d(track.frames, other.frames, assume_unique=True, return_indices=True)
-        repeated[mine[box_iou(track.boxes[mine], other.boxes[theirs]) >= min_iou]] = True
+        boxes, other_boxes = track.boxes[mine], other.boxes[theirs]
+        same = (box_iou(boxes, other_boxes) >= min_iou if min_inside is None
+                else same_boxes(boxes, other_boxes, min_iou, min_inside))
+        repeated[mine[same]] = True
     return repeated
 
 
@@ -144,9 +148,7 @@ def drop_shared_stretches(tracks: Sequence[Track], n_frames: int, min_frames: in
     on together, or travel together and part, keep both tracks: neither turns.
     """
     out = list(tracks)
-    boxes = np.full((len(out), n_frames, 4), np.nan)
-    for slot, t in enumerate(out):
-        boxes[slot, t.frames] = t.boxes
+    boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
     for a in range(len(out)):
         for b in range(len(out)):
             if a == b or len(out[a]) == 0:
@@ -173,10 +175,7 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
     """
     out = list(tracks)
     for slot, track in enumerate(out):
-        repeated = np.zeros(len(track), dtype=bool)
-        for other in out[:slot] + out[slot + 1:]:
-            _, mine, theirs = np.intersect1d(track.frames, other.frames, assume_unique=True, return_indices=True)
-            repeated[mine[same_boxes(track.boxes[mine], other.boxes[theirs], min_iou, min_inside)]] = True
+        repeated = repeats_others(track, out[:slot] + out[slot + 1:], min_iou, min_inside)
         keep = np.ones(len(track), dtype=bool)
         for rows in np.split(np.arange(len(track)), np.flatnonzero(np.diff(track.frames) > min_gap) + 1):
             if np.mean(repeated[rows]) >= min_share:

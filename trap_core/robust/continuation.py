@@ -80,8 +80,8 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
     of them, the first at most ``window`` frames after the end, and over the first ``window`` of
     them be at most ``reach`` px (median) from where the earlier track's motion (a straight
     line through its last ``window`` box centres) puts it: where look-alikes part, its first
-    boxes may still lie between the two. The closest such track is taken; its counted frames are appended. Ids are
-    renumbered 1.. in order.
+    boxes may still lie between the two. The closest such track is taken; its counted frames
+    are appended. Ids are renumbered 1.. in order.
     """
     out = list(tracks)
     slot = 0
@@ -129,9 +129,9 @@ def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, cand
     ``min_share`` of at least half of them where the track has a box, the test of
     :func:`trap_core.robust.merge_duplicates`: IoU at least ``min_iou``, or one box at least
     ``min_inside`` inside the other, as where the candidate's box takes in a look-alike still
-    touching the object), and in the stretch it has boxes that repeat no track's in at least half its frames:
-    the object was elsewhere, where nothing tracked it. The track's boxes in the stretch are
-    replaced by those, and the other track keeps the stretch. Where candidates mend both
+    touching the object), and in the stretch it has boxes that repeat no track's in at least
+    half its frames: the object was elsewhere, where nothing tracked it. The track's boxes in
+    the stretch are replaced by those, and the other track keeps the stretch. Where candidates mend both
     tracks, neither is changed: nothing tells which went on with the object.
     """
     out = list(tracks)

@@ -75,14 +75,10 @@ def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, l
     """Frame of ``cuts`` where exchanging the centre paths' continuations helps most, or None."""
     best, best_gain = None, 0.0
     for cut in cuts:
-        before = [straight_line(path, np.arange(max(cut - window, 0), cut)) for path in (first, second)]
-        after = [straight_line(path, np.arange(cut, min(cut + window, len(path)))) for path in (first, second)]
-        if any(line is None for line in before + after):
-            continue
-        kept = _break(before[0], after[0], cut, window) + _break(before[1], after[1], cut, window)
-        exchanged = _break(before[0], after[1], cut, window) + _break(before[1], after[0], cut, window)
-        if exchanged <= least < kept and 2 * exchanged <= kept and kept - exchanged > best_gain:
-            best, best_gain = cut, kept - exchanged
+        gain = _exchange_gain(first, second, np.arange(max(cut - window, 0), cut),
+                              np.arange(cut, min(cut + window, len(first))), cut, window, least)
+        if gain is not None and gain > best_gain:
+            best, best_gain = cut, gain
     return best
 
 
@@ -91,15 +87,27 @@ def _across_meeting(first: np.ndarray, second: np.ndarray, start: int, stop: int
     """The meeting's middle frame if exchanging there helps by the test of :func:`_best_cut`,
     judged from the lines over ``window`` frames before the meeting and after it (the tracks
     may hold one object together in it, so that no single frame of it parts them), else None."""
-    before = [straight_line(path, np.arange(max(start - window, 0), start)) for path in (first, second)]
-    after = [straight_line(path, np.arange(stop, min(stop + window, len(path)))) for path in (first, second)]
-    if any(line is None for line in before + after):
-        return None
     middle = (start + stop) // 2
-    spread = window + stop - start
-    kept = _break(before[0], after[0], middle, spread) + _break(before[1], after[1], middle, spread)
-    exchanged = _break(before[0], after[1], middle, spread) + _break(before[1], after[0], middle, spread)
-    return middle if exchanged <= least < kept and 2 * exchanged <= kept else None
+    gain = _exchange_gain(first, second, np.arange(max(start - window, 0), start),
+                          np.arange(stop, min(stop + window, len(first))), middle, window + stop - start, least)
+    return None if gain is None else middle
+
+
+def _exchange_gain(first: np.ndarray, second: np.ndarray, before: np.ndarray, after: np.ndarray, cut: int,
+                   spread: int, least: float) -> float | None:
+    """How much exchanging the centre paths' continuations at ``cut`` lessens the break of their
+    motions (:func:`_break`, jumps spread over ``spread`` frames), from straight lines over the
+    frames ``before`` and ``after``; None unless the paths' own pairing breaks by more than
+    ``least`` and the exchanged one by at most that, and by at most half as much."""
+    lines_before = [straight_line(path, before) for path in (first, second)]
+    lines_after = [straight_line(path, after) for path in (first, second)]
+    if any(line is None for line in lines_before + lines_after):
+        return None
+    kept = (_break(lines_before[0], lines_after[0], cut, spread)
+            + _break(lines_before[1], lines_after[1], cut, spread))
+    exchanged = (_break(lines_before[0], lines_after[1], cut, spread)
+                 + _break(lines_before[1], lines_after[0], cut, spread))
+    return kept - exchanged if exchanged <= least < kept and 2 * exchanged <= kept else None
 
 
 def _break(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, np.ndarray], cut: int,

@@ -153,3 +153,17 @@ def test_track_boxes_and_scores() -> None:
     assert track.track_id == 7 and track.frames.tolist() == [0, 1]
     np.testing.assert_array_equal(track.boxes, [[10, 5, 21, 15], [0, 0, 5, 5]])
     np.testing.assert_array_equal(track.score, [1.0, 0.5])
+
+
+def test_centre_inside_takes_the_smaller_boxs_centre_in_the_larger() -> None:
+    """A box half as large 8 px off a 40x30 box's centre holds its object (IoU 0.25); one whose
+    centre is 25 px off does not; either order, and never with an absent (NaN) box."""
+    from trap_core.clustering import box_iou, centre_inside
+    large = np.array([100.0, 200.0, 40.0, 30.0])
+    near = np.array([118.0, 207.5, 20.0, 15.0])
+    far = near + [25.0, 0.0, 0.0, 0.0]
+    assert box_iou(near, large) < 0.5
+    assert centre_inside(near, large) and centre_inside(large, near)
+    assert not centre_inside(far, large) and not centre_inside(large, far)
+    assert centre_inside(np.array([near, far]), large).tolist() == [True, False]
+    assert not centre_inside(np.full(4, np.nan), large)

@@ -790,6 +790,25 @@ def test_a_twin_lends_nothing_in_the_view_while_the_object_is_out_of_it() -> Non
     assert out[0].frames.tolist() == np.r_[0:50, 120:200].tolist()
 
 
+def test_a_twin_that_followed_the_object_out_lends_nothing_on_another_tracks_object() -> None:
+    """The track's object leaves a 640x480 view on the right at frame 49. Its twin follows it to
+    the border in frames 50-54, then holds another track's object in 55-89 (a box half as large
+    on it, IoU 0.25): only 50-54 are lent. Without that track, what the twin holds in the view
+    after the border may be the object coming back: 55-89 are lent too."""
+    from trap_core.robust import extend_from_twins
+    t = np.arange(90, dtype=float)
+    boxes = np.column_stack([500 + 2.5 * t, np.full(90, 200.0), np.full(90, 40.0), np.full(90, 30.0)])
+    other = np.tile([300.0, 100.0, 40.0, 30.0], (90, 1))
+    twin = boxes.copy()
+    twin[55:] = other[55:] * [1.0, 1.0, 0.5, 0.5] + [18.0, 7.5, 0.0, 0.0]
+    frames = np.arange(90)
+    kept, elsewhere = _as_track(1, frames[:50], boxes[:50]), _as_track(2, frames, other)
+    out = extend_from_twins([kept, elsewhere], [_as_track(0, frames, twin)], 25, 1.5, view=(640, 480))
+    assert out[0].frames.tolist() == list(range(55))
+    alone = extend_from_twins([kept], [_as_track(0, frames, twin)], 25, 1.5, view=(640, 480))
+    assert alone[0].frames.tolist() == list(range(90))
+
+
 def test_shared_tails_kept_when_no_track_turns_or_too_short() -> None:
     from trap_core.robust import drop_shared_stretches
     frames = np.arange(100)
@@ -943,9 +962,32 @@ def test_a_track_that_takes_over_after_a_few_frames_between_the_objects_is_appen
     np.testing.assert_allclose(out[0].boxes[62:], boxes[62:])
 
 
+def test_a_track_that_takes_over_after_travelling_with_another_object_is_appended() -> None:
+    """Track 1 holds frames 0-59 of an object moving right. Track 2 starts at frame 20, 40
+    frames before track 1 ends, on track 3's object (a box half as large, 8 px off its centre:
+    IoU 0.25), and from frame 60 goes on where track 1's motion puts it: the two are one. Where
+    track 2's first ten frames are on nothing tracked, it held an object of its own: it stays."""
+    from trap_core.robust import join_handovers
+    t = np.arange(100, dtype=float)
+    boxes = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    below = boxes + [0.0, 100.0, 0.0, 0.0]
+    on_below = below * [1.0, 1.0, 0.5, 0.5] + [18.0, 7.5, 0.0, 0.0]
+    frames = np.arange(100)
+    taking_over = np.vstack([on_below[20:60], boxes[60:]])
+    tracks = [_as_track(1, frames[:60], boxes[:60]), _as_track(2, frames[20:], taking_over),
+              _as_track(3, frames, below)]
+    out = join_handovers(tracks, 100, 12, 40.0)
+    assert [len(t) for t in out] == [100, 100]
+    np.testing.assert_allclose(out[0].boxes, boxes)
+    own_start = taking_over.copy()
+    own_start[:10] = boxes[20:30] + [0.0, -185.0, 0.0, 0.0]
+    tracks[1] = _as_track(2, frames[20:], own_start)
+    assert len(join_handovers(tracks, 100, 12, 40.0)) == 3
+
+
 def test_a_piece_of_a_track_on_another_tracks_object_is_dropped() -> None:
     """Track 2 holds its own object in frames 0-39 and, after a 30-frame gap, track 1's object
-    in 70-99 (IoU 0.8, or a box inside track 1's): that piece goes. A piece on track 1's object
+    in 70-99 (IoU 0.8, a box inside track 1's, or one whose centre is in it): that piece goes. A piece on track 1's object
     in only half its frames stays."""
     from trap_core.robust import drop_repeated_pieces
     t = np.arange(100, dtype=float)
@@ -959,6 +1001,9 @@ def test_a_piece_of_a_track_on_another_tracks_object_is_dropped() -> None:
     inside = back.copy()
     inside[40:] = first[70:] * [1.0, 1.0, 0.5, 0.5] + [5.0, 5.0, 0.0, 0.0]
     assert drop_repeated_pieces([tracks[0], _as_track(2, frames, inside)], 12)[1].frames.tolist() == list(range(40))
+    off = back.copy()
+    off[40:] = first[70:] + [15.0, 10.0, 0.0, 0.0]  # half a size off: IoU 0.26, its centre in the box
+    assert drop_repeated_pieces([tracks[0], _as_track(2, frames, off)], 12)[1].frames.tolist() == list(range(40))
     half = back.copy()
     half[55:] = second[85:]
     assert len(drop_repeated_pieces([tracks[0], _as_track(2, frames, half)], 12)[1]) == 70

@@ -89,6 +89,16 @@ def box_containment(a: np.ndarray, b: np.ndarray) -> np.ndarray:
         return np.nan_to_num(inter / smaller, posinf=0.0)
 
 
+def centre_inside(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Whether the centre of the smaller of boxes ``a``, ``b`` ``(x, y, w, h)`` (last axis) lies in
+    the other, broadcast over the others (False where a box is absent: NaN)."""
+    a, b = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(b, dtype=float))
+    a_smaller = (a[..., 2] * a[..., 3] <= b[..., 2] * b[..., 3])[..., None]
+    small, large = np.where(a_smaller, a, b), np.where(a_smaller, b, a)
+    centre = box_centres(small)
+    return np.all((centre >= large[..., :2]) & (centre <= large[..., :2] + large[..., 2:4]), axis=-1)
+
+
 def _intersection(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``a`` and ``b`` as float arrays, and the area their boxes share (broadcast)."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)

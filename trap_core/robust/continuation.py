@@ -7,8 +7,9 @@ ended but is too short to be selected, and overlaps the track's cluster in time 
 rejoined to it. :func:`continue_tracks` appends it.
 
 When such a cluster was long enough to be selected, the object's path after the meeting is a
-track of its own, often starting on the other object for a few frames (while the two are in
-one place) before it follows its own: :func:`join_handovers` makes the two tracks one.
+track of its own, often starting on the other object (for as long as the two are in one place,
+a few frames where they cross, longer where they travel together) before it follows its own:
+:func:`join_handovers` makes the two tracks one.
 
 A track's cluster can also hold one object before such a meeting and the other after it (or the
 reverse): over a stretch it repeats the other object's track, while its own object has no track.
@@ -74,14 +75,16 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
     """Tracks where a track that ends more than ``window`` frames before the video is followed by
     another that takes its object over: the later one is appended to the earlier and dropped.
 
-    The later track must start at most ``window`` frames before or after the earlier one ends;
-    of its frames after that end, those where it repeats a third track's box (IoU at least
-    ``min_iou``: it is still on the other object) do not count; it must keep at least ``window``
-    of them, the first at most ``window`` frames after the end, and over the first ``window`` of
-    them be at most ``reach`` px (median) from where the earlier track's motion (a straight
-    line through its last ``window`` box centres) puts it: where look-alikes part, its first
-    boxes may still lie between the two. The closest such track is taken; its counted frames
-    are appended. Ids are renumbered 1.. in order.
+    The later track must start at most ``window`` frames after the earlier one ends, and where it
+    starts more than ``window`` frames before that end, hold a third track's object there (the
+    centre of the smaller box in the other's) until then: it began on another object and stayed
+    with it while the two were in one place. Of its frames after that end, those where it
+    repeats a third track's box (IoU at least ``min_iou``: it is still on the other object) do
+    not count; it must keep at least ``window`` of them, the first at most ``window`` frames
+    after the end, and over the first ``window`` of them be at most ``reach`` px (median) from
+    where the earlier track's motion (a straight line through its last ``window`` box centres)
+    puts it: where look-alikes part, its first boxes may still lie between the two. The closest
+    such track is taken; its counted frames are appended. Ids are renumbered 1.. in order.
     """
     out = list(tracks)
     slot = 0
@@ -95,10 +98,13 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
         velocity, origin = line
         best, best_error, best_rows = None, reach, None
         for other, later in enumerate(out):
-            if other == slot or abs(int(later.frames[0]) - end) > window:
+            if other == slot or int(later.frames[0]) > end + window:
                 continue
-            rows = later.frames > end
-            rows &= ~repeats_others(later, [t for k, t in enumerate(out) if k not in (slot, other)], min_iou)
+            thirds = [t for k, t in enumerate(out) if k not in (slot, other)]
+            on_third = repeats_others(later, thirds, min_iou, centred=True)
+            if np.any(~on_third & (later.frames < end - window)):
+                continue
+            rows = (later.frames > end) & ~repeats_others(later, thirds, min_iou)
             after = np.flatnonzero(rows)
             if after.size < window or later.frames[after[0]] > end + window:
                 continue

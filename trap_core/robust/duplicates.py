@@ -27,7 +27,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, box_centres, box_containment, box_iou, box_path, in_rows, with_frames
+from trap_core.clustering import (Track, box_centres, box_containment, box_iou, box_path, centre_inside, in_rows,
+                                  with_frames)
 from trap_core.robust.rejoin import reaches_border
 
 TURN = 0.1  # a velocity change of this share of the box size per frame is a turn, not jitter
@@ -62,8 +63,10 @@ def extend_from_twins(tracks: Sequence[Track], twins: Sequence[Track], min_commo
     look-alikes moving together has the pair's box) and where it does not repeat another
     track's box (IoU at least ``min_iou``: a twin that followed a look-alike for a while).
     With the ``view``'s width and height, an object that left it comes back at its border: in a
-    gap after a track's box at the border, a twin lends nothing before its first box there, and
-    in a gap before one, nothing after its last (:func:`_back_through_border`).
+    gap after a track's box at the border, a twin lends nothing before its first box there, nor,
+    from there on, a box whose centre (or the other's, for the smaller) lies in another track's
+    box: having followed the object out, it holds another object; and in a gap before a box at
+    the border, nothing after its last (:func:`_back_through_border`).
     """
     out = list(tracks)
     for twin in twins:
@@ -74,19 +77,23 @@ def extend_from_twins(tracks: Sequence[Track], twins: Sequence[Track], min_commo
         lend = ~np.isin(twin.frames, kept.frames)
         if size_jump:
             lend &= np.all(twin.boxes[:, 2:4] <= size_jump * np.median(kept.boxes[:, 2:4], axis=0), axis=1)
-        lend &= ~repeats_others(twin, [t for k, t in enumerate(out) if k != same[0]], min_iou)
+        others = [t for k, t in enumerate(out) if k != same[0]]
+        lend &= ~repeats_others(twin, others, min_iou)
         if view is not None:
-            lend &= _back_through_border(kept, twin, view)
+            fine, gone = _back_through_border(kept, twin, view)
+            lend &= fine & ~(gone & repeats_others(twin, others, min_iou, centred=True))
         out[same[0]] = _union(kept, in_rows(twin, lend))
     return out
 
 
-def _back_through_border(kept: Track, twin: Track, view: tuple[float, float]) -> np.ndarray:
-    """Per frame of ``twin``: whether it may hold ``kept``'s object as far as the border goes.
-    In a gap of ``kept`` that follows a box at the border (the object left the view), no frame
-    before the twin's first box at the border there; in one that precedes such a box (it came
-    in), no frame after the twin's last box at the border."""
+def _back_through_border(kept: Track, twin: Track, view: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
+    """Per frame of ``twin``: whether it may hold ``kept``'s object as far as the border goes,
+    and whether it follows that object out of the view. In a gap of ``kept`` that follows a box
+    at the border (the object left the view), no frame before the twin's first box at the border
+    there, and the frames from that box on follow the object out; in a gap that precedes such a
+    box (it came in), no frame after the twin's last box at the border."""
     fine = np.ones(len(twin), dtype=bool)
+    gone = np.zeros(len(twin), dtype=bool)
     own_border = reaches_border(kept.boxes, *view)
     twin_border = reaches_border(twin.boxes, *view)
     slot = np.searchsorted(kept.frames, twin.frames)  # the kept frames before a twin frame: slot - 1
@@ -94,22 +101,27 @@ def _back_through_border(kept: Track, twin: Track, view: tuple[float, float]) ->
         rows = np.flatnonzero(slot == gap)
         at_border = rows[twin_border[rows]]
         if gap > 0 and own_border[gap - 1]:
-            fine[rows[rows < (at_border[0] if at_border.size else rows[-1] + 1)]] = False
+            out_from = at_border[0] if at_border.size else rows[-1] + 1
+            fine[rows[rows < out_from]] = False
+            gone[rows[rows >= out_from]] = True
         if gap < len(kept) and own_border[gap]:
             fine[rows[rows > (at_border[-1] if at_border.size else rows[0] - 1)]] = False
-    return fine
+    return fine, gone
 
 
-def repeats_others(track: Track, others: Sequence[Track], min_iou: float, min_inside: float | None = None
-                   ) -> np.ndarray:
+def repeats_others(track: Track, others: Sequence[Track], min_iou: float, min_inside: float | None = None,
+                   centred: bool = False) -> np.ndarray:
     """Per frame of ``track``: whether its box repeats one of ``others``' there (IoU at least
-    ``min_iou``; with ``min_inside``, or the test of :func:`same_boxes`)."""
+    ``min_iou``; with ``min_inside``, or the test of :func:`same_boxes`; ``centred``, or the
+    centre of the smaller box lies in the other: :func:`trap_core.clustering.centre_inside`)."""
     repeated = np.zeros(len(track), dtype=bool)
     for other in others:
         _, mine, theirs = np.intersect1d(track.frames, other.frames, assume_unique=True, return_indices=True)
         boxes, other_boxes = track.boxes[mine], other.boxes[theirs]
         same = (box_iou(boxes, other_boxes) >= min_iou if min_inside is None
                 else same_boxes(boxes, other_boxes, min_iou, min_inside))
+        if centred:
+            same |= centre_inside(boxes, other_boxes)
         repeated[mine[same]] = True
     return repeated
 
@@ -168,14 +180,16 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
     """Tracks without pieces that repeat other tracks' boxes; tracks left empty are dropped.
 
     A piece is a run of a track's frames without a gap of more than ``min_gap`` frames. Where a
-    piece's boxes hold another track's object (:func:`same_boxes`) in at least ``min_share`` of
-    its frames, its object is tracked already there: a path that went on with a look-alike and
-    came back with it after a gap, which no turn shows (:func:`drop_shared_stretches` needs the
-    track's motion on both sides). Tracks are taken in order, each against the others as left.
+    piece's boxes hold another track's object (:func:`same_boxes`, or the centre of the smaller
+    box lies in the other: a piece on part of it, or off it by less than half a size) in at
+    least ``min_share`` of its frames, its object is tracked already there: a path that went on
+    with a look-alike and came back with it after a gap, which no turn shows
+    (:func:`drop_shared_stretches` needs the track's motion on both sides). Tracks are taken in
+    order, each against the others as left.
     """
     out = list(tracks)
     for slot, track in enumerate(out):
-        repeated = repeats_others(track, out[:slot] + out[slot + 1:], min_iou, min_inside)
+        repeated = repeats_others(track, out[:slot] + out[slot + 1:], min_iou, min_inside, centred=True)
         keep = np.ones(len(track), dtype=bool)
         for rows in np.split(np.arange(len(track)), np.flatnonzero(np.diff(track.frames) > min_gap) + 1):
             if np.mean(repeated[rows]) >= min_share:

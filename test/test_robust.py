@@ -892,6 +892,34 @@ def test_lookalikes_that_traded_objects_after_holding_one_together_get_them_back
     np.testing.assert_allclose(out[1].boxes[away], left[away])
 
 
+def test_lookalikes_travelling_together_keep_their_tracks_when_the_motion_around_says_so() -> None:
+    """Object Q comes down onto object P's lane, travels 20 px from it for 60 frames and goes on
+    down (meeting: frames 31-109, longer than twice the 8-frame window). The tracks trade lanes in
+    frames 70-99: a cut at 70 would exchange them by the lines there, but the lines before and
+    after the whole meeting say each went on as it was going, so nothing is exchanged. Where Q
+    leaves the lane at 66 (a meeting of 26 frames) and the tracks trade for good at 70, they are
+    exchanged back there."""
+    from trap_core.robust import swap_at_crossings
+    t = np.arange(160, dtype=float)
+    p = np.column_stack([100 + 2 * t, np.full(160, 200.0), np.full(160, 40.0), np.full(160, 30.0)])
+    q = p.copy()
+    q[:, 1] = np.clip(300 - 2 * t, 220, None) - 2 * np.clip(t - 100, 0, None)
+    first, second = p.copy(), q.copy()
+    first[70:100], second[70:100] = q[70:100], p[70:100]
+    frames = np.arange(160)
+    alike = np.ones((2, 2), dtype=bool)
+    out = swap_at_crossings([_as_track(1, frames, first), _as_track(2, frames, second)], 160, 8, alike)
+    np.testing.assert_allclose(out[0].boxes, first)
+    np.testing.assert_allclose(out[1].boxes, second)
+    q[:, 1] = np.clip(300 - 2 * t, 220, None) - 2 * np.clip(t - 66, 0, None)  # together for 26 frames only
+    first, second = p.copy(), q.copy()
+    first[70:], second[70:] = q[70:], p[70:]
+    out = swap_at_crossings([_as_track(1, frames, first), _as_track(2, frames, second)], 160, 8, alike)
+    away = np.abs(t - 70) > 4
+    np.testing.assert_allclose(out[0].boxes[away], p[away])
+    np.testing.assert_allclose(out[1].boxes[away], q[away])
+
+
 def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_ended() -> None:
     """The track holds frames 0-59 of an object moving right; cluster 0 goes on from frame 62
     where that motion puts it, cluster 1 starts at the same time 185 px away, cluster 2 goes on

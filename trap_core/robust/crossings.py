@@ -47,8 +47,10 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
     more than ``TURN`` times the smaller size per frame (a turn, not jitter) and the exchanged
     pairing does not, by at most half as much (both go on as they were going). Where no frame
     passes, the same test on the lines before and after the whole meeting exchanges them at its
-    middle frame (:func:`_across_meeting`). Only tracks ``alike[a, b]`` (:func:`lookalike_tracks`)
-    trade.
+    middle frame (:func:`_across_meeting`). In a meeting longer than ``2 * window`` frames, the
+    lines at a cut lie inside it, on boxes of two objects that travel together: the cut is not
+    taken where the lines before and after the whole meeting break less with the tracks' own
+    pairing. Only tracks ``alike[a, b]`` (:func:`lookalike_tracks`) trade.
     """
     out = list(tracks)
     centres = np.array([centre_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 2)
@@ -62,8 +64,11 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
             edges = np.diff(np.concatenate(([0], close.astype(np.int8), [0])))
             for start, stop in zip(np.flatnonzero(edges == 1).tolist(), np.flatnonzero(edges == -1).tolist()):
                 cut = _best_cut(centres[a], centres[b], range(start, stop + 1), window, TURN * size)
+                outside = _across_meeting(centres[a], centres[b], start, stop, window)
                 if cut is None:
-                    cut = _across_meeting(centres[a], centres[b], start, stop, window, TURN * size)
+                    cut = (start + stop) // 2 if _gain(outside, TURN * size) is not None else None
+                elif stop - start > 2 * window and outside is not None and outside[0] < outside[1]:
+                    cut = None
                 if cut is None:
                     continue
                 out[a], out[b] = _exchanged(out[a], out[b], cut)
@@ -75,30 +80,27 @@ def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, l
     """Frame of ``cuts`` where exchanging the centre paths' continuations helps most, or None."""
     best, best_gain = None, 0.0
     for cut in cuts:
-        gain = _exchange_gain(first, second, np.arange(max(cut - window, 0), cut),
-                              np.arange(cut, min(cut + window, len(first))), cut, window, least)
+        gain = _gain(_breaks(first, second, np.arange(max(cut - window, 0), cut),
+                             np.arange(cut, min(cut + window, len(first))), cut, window), least)
         if gain is not None and gain > best_gain:
             best, best_gain = cut, gain
     return best
 
 
-def _across_meeting(first: np.ndarray, second: np.ndarray, start: int, stop: int, window: int, least: float
-                    ) -> int | None:
-    """The meeting's middle frame if exchanging there helps by the test of :func:`_best_cut`,
-    judged from the lines over ``window`` frames before the meeting and after it (the tracks
-    may hold one object together in it, so that no single frame of it parts them), else None."""
-    middle = (start + stop) // 2
-    gain = _exchange_gain(first, second, np.arange(max(start - window, 0), start),
-                          np.arange(stop, min(stop + window, len(first))), middle, window + stop - start, least)
-    return None if gain is None else middle
+def _across_meeting(first: np.ndarray, second: np.ndarray, start: int, stop: int, window: int
+                    ) -> tuple[float, float] | None:
+    """:func:`_breaks` of a cut at the meeting's middle frame, judged from the lines over
+    ``window`` frames before the meeting and after it (the tracks may hold one object together
+    in it, so that no single frame of it parts them, or travel together for long)."""
+    return _breaks(first, second, np.arange(max(start - window, 0), start),
+                   np.arange(stop, min(stop + window, len(first))), (start + stop) // 2, window + stop - start)
 
 
-def _exchange_gain(first: np.ndarray, second: np.ndarray, before: np.ndarray, after: np.ndarray, cut: int,
-                   spread: int, least: float) -> float | None:
-    """How much exchanging the centre paths' continuations at ``cut`` lessens the break of their
-    motions (:func:`_break`, jumps spread over ``spread`` frames), from straight lines over the
-    frames ``before`` and ``after``; None unless the paths' own pairing breaks by more than
-    ``least`` and the exchanged one by at most that, and by at most half as much."""
+def _breaks(first: np.ndarray, second: np.ndarray, before: np.ndarray, after: np.ndarray, cut: int, spread: int
+            ) -> tuple[float, float] | None:
+    """How much the centre paths' own pairing and the exchanged one (continuations traded at
+    ``cut``) break their motions (:func:`_break`, jumps spread over ``spread`` frames), from
+    straight lines over the frames ``before`` and ``after``; None where a line cannot be drawn."""
     lines_before = [straight_line(path, before) for path in (first, second)]
     lines_after = [straight_line(path, after) for path in (first, second)]
     if any(line is None for line in lines_before + lines_after):
@@ -107,6 +109,16 @@ def _exchange_gain(first: np.ndarray, second: np.ndarray, before: np.ndarray, af
             + _break(lines_before[1], lines_after[1], cut, spread))
     exchanged = (_break(lines_before[0], lines_after[1], cut, spread)
                  + _break(lines_before[1], lines_after[0], cut, spread))
+    return kept, exchanged
+
+
+def _gain(breaks: tuple[float, float] | None, least: float) -> float | None:
+    """How much exchanging lessens the break (own, exchanged) of the motions; None unless the
+    own pairing breaks by more than ``least`` and the exchanged one by at most that, and by at
+    most half as much."""
+    if breaks is None:
+        return None
+    kept, exchanged = breaks
     return kept - exchanged if exchanged <= least < kept and 2 * exchanged <= kept else None
 
 

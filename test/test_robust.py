@@ -1037,6 +1037,29 @@ def test_a_piece_of_a_track_on_another_tracks_object_is_dropped() -> None:
     assert len(drop_repeated_pieces([tracks[0], _as_track(2, frames, half)], 12)[1]) == 70
 
 
+def test_a_track_whose_pieces_change_size_keeps_the_size_it_holds_longest() -> None:
+    """Three tracks of three pieces each (frames 0-59, 110-209, 260-329). A chain of background
+    regions of 40x30, 200x120 and 80x60 px holds no size for 150 frames: dropped. A track at
+    40x30, then 200x120, then 44x33 keeps its two small pieces (130 frames). One that grows from
+    40x30 to 48x36 to 56x42 (an object coming closer) is kept whole. Ids are renumbered."""
+    from trap_core.robust import keep_one_size
+    frames = np.r_[0:60, 110:210, 260:330]
+    piece = np.repeat([0, 1, 2], [60, 100, 70])
+
+    def sized(*sides: tuple[float, float]) -> np.ndarray:
+        size = np.array(sides, dtype=float)[piece]
+        return np.column_stack([100 + frames, np.full(frames.size, 200.0), size])
+
+    chain = _as_track(1, frames, sized((40, 30), (200, 120), (80, 60)))
+    mixed = _as_track(2, frames, sized((40, 30), (200, 120), (44, 33)))
+    closer = _as_track(3, frames, sized((40, 30), (48, 36), (56, 42)))
+    out = keep_one_size([chain, mixed, closer], 25, 120)
+    assert [t.track_id for t in out] == [1, 2]
+    assert out[0].frames.tolist() == np.r_[0:60, 260:330].tolist()
+    assert len(out[1]) == 230
+    assert len(keep_one_size([mixed], 25, 150)) == 0
+
+
 def test_boxes_that_slide_onto_something_else_and_back_are_dropped_and_a_smooth_turn_is_kept() -> None:
     """A 40 px object goes right at 3 px per frame; in frames 30-34 its box slides 10, 20, 30,
     40, 50 px down and is back at 35 (a look-alike below). Another object curves through a

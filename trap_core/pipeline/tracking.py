@@ -14,11 +14,12 @@ from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
-from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed, continue_to_border,
-                              continue_tracks, drop_repeated_pieces, drop_shared_stretches, drop_still_regions,
-                              drop_strays, extend_from_twins, fill_gaps, grow_boxes, join_handovers, lookalike_tracks,
-                              mend_shared_stretches, merge_duplicates, pattern_sizes, rejoin_fragments, separate_groups,
-                              split_mixed, swap_at_crossings, world_speed)
+from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed,
+                              continue_to_border, continue_tracks, drop_repeated_pieces, drop_shared_stretches,
+                              drop_still_regions, drop_strays, extend_from_twins, fill_gaps, grow_boxes,
+                              join_handovers, keep_one_size, lookalike_tracks, mend_shared_stretches, merge_duplicates,
+                              pattern_sizes, rejoin_fragments, separate_groups, split_mixed, swap_at_crossings,
+                              world_speed)
 
 
 @dataclass
@@ -148,6 +149,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         tracks = gaps_filled(join_handovers(tracks, n_frames, max(3, params.tau // 2), params.eps))
         if params.size_jump:  # the continuations' boxes were not sized against their tracks yet
             tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau, groups=False)
+        if not params.n_objects:
+            tracks = keep_one_size(tracks, params.tau, int(params.min_track_length * n_frames))
     if robust and params.to_border:
         tracks = [continue_to_border(t, n_frames, width, height, max(3, params.tau // 2), 2 * params.tau)
                   for t in tracks]

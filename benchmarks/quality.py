@@ -1,19 +1,19 @@
 #!/usr/bin/env python3
 """Benchmark: tracking quality of the defaults on synthetic videos with ground truth.
 
-Ten sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
+Eleven sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
 presets, seeds 0-2), the variants looked at while the robust rules were chosen ("tuned"), variants
 never looked at while choosing them ("held-out"), frames larger than the working size ("larger",
 segmented scaled down to ``max_side``), a camera that also turns and zooms ("camera"), objects of
 other shapes ("shapes": tall, round, several shapes at once), a mix of all of these made later, on
 which the last three rules were chosen ("recent"), another made after those ("fresh"), one with
-more look-alikes ("newest") on which the three rules after those were checked, and a last one made
-after every rule ("untouched"). Prints, per video, the tracks found without being told the number
+more look-alikes ("newest") on which the three rules after those were checked, one made after
+those ("untouched"), and a last one made after every rule ("latest"). Prints, per video, the tracks found without being told the number
 of objects, each object's box precision/recall (%) and MOTA / IDF1 / HOTA; per set, the mean
 precision x recall, the share of objects at 90/90 or better and the mean MOTA / IDF1, and that
 share over all sets run; with ``--pictures DIR``, each video's tracks as a contact sheet and a
 timeline. Graphs are cached (``--cache``), so a second run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,untouched] [-p name:=value]``
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,latest] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
@@ -145,10 +145,27 @@ UNTOUCHED = [  # made after every rule, never tuned on
     ("identical, 640x360, noise 1, Felzenszwalb", dict(seed=178, identical=True, width=640, height=360, noise=1.0),
      "felzenszwalb"),
 ]
+LATEST = [  # made after the centre-test, long-meeting and one-size rules, never tuned on
+    ("distinct, 4 objects, 960x540, noise 1, Felzenszwalb",
+     dict(seed=191, objects=4, width=960, height=540, noise=1.0), "felzenszwalb"),
+    ("identical, person, turn 10 deg, zoom 10 %",
+     dict(seed=192, identical=True, shape="person", rotation=10.0, zoom=0.1), "colour"),
+    ("identical, disc, 5 objects, 800x600",
+     dict(seed=193, identical=True, shape="disc", objects=5, width=800, height=600), "colour"),
+    ("distinct, mixed shapes, illumination 10 %, noise 1.5, Felzenszwalb",
+     dict(seed=194, shape="mixed", illumination=0.1, noise=1.5), "felzenszwalb"),
+    ("identical, 4 objects 1.2x, turn 15 deg",
+     dict(seed=195, identical=True, objects=4, object_scale=1.2, rotation=15.0), "colour"),
+    ("identical, car, noise 2, Felzenszwalb", dict(seed=196, identical=True, shape="car", noise=2.0),
+     "felzenszwalb"),
+    ("distinct, 5 objects 0.8x, zoom 20 %", dict(seed=197, objects=5, object_scale=0.8, zoom=0.2), "colour"),
+    ("identical, mixed shapes, 4 objects, 1024x576, noise 1, Felzenszwalb",
+     dict(seed=198, identical=True, shape="mixed", objects=4, width=1024, height=576, noise=1.0), "felzenszwalb"),
+]
 FELZENSZWALB_ONLY = ("k", "sigma", "min_size", "threshold", "connectivity")  # no effect on exact-colour regions
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
         "shapes": SHAPES, "recent": RECENT, "fresh": FRESH,
-        "newest": NEWEST, "untouched": UNTOUCHED}
+        "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST}
 
 
 def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None = None,

@@ -93,7 +93,8 @@ def test_compressed_images(tmp_path: Path, fmt: str, tolerance: int) -> None:
             np.testing.assert_allclose(_block_centres(frame.rgb), _block_centres(original), atol=tolerance)
 
 
-@pytest.mark.parametrize("storage,name", [("mcap", "bag"), ("sqlite3", "bag"), ("ros1", "bag.bag")])
+@pytest.mark.parametrize("storage,name", [("mcap", "bag"), ("sqlite3", "bag"), ("ros1", "bag.bag"),
+                                          ("ros1", "recording")])  # a ROS 1 bag named without .bag
 def test_storages_keep_stamps_and_frame_ids(tmp_path: Path, storage: str, name: str) -> None:
     frames = _frames(count=5)
     write_image_bag(tmp_path / name, frames, storage=storage, fps=10, frame_id="cam_optical")

@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from tempfile import TemporaryDirectory
 from types import TracebackType
 
 import numpy as np
@@ -19,6 +20,7 @@ from trap_core.bagio.decode import decode_compressed, decode_image
 from trap_core.bagio.errors import BagError
 
 IMAGE_TYPES = ("sensor_msgs/msg/Image", "sensor_msgs/msg/CompressedImage")
+ROS1_MAGIC = b"#ROSBAG V2.0\n"  # first line of every ROS 1 bag
 MIN_SIDE = 16  # px: below, a frame holds too few regions of a useful size to form the faces patterns are made of
 
 
@@ -41,12 +43,27 @@ def _reason(error: BaseException) -> str:
 def _open_reader(path: Path) -> AnyReader:
     if not path.exists():
         raise BagError(f"bag not found: {path}")
+    alias = _ros1_alias(path)
     try:
-        reader = AnyReader([path])
+        reader = AnyReader([path if alias is None else Path(alias.name) / f"{path.name}.bag"])
         reader.open()
     except Exception as error:  # rosbags, sqlite3 and mcap raise many unrelated types
         raise BagError(f"{path} is not a readable ROS 1 or ROS 2 bag: {_reason(error)}") from None
+    reader.trap_alias = alias  # the alias lives as long as the reader
     return reader
+
+
+def _ros1_alias(path: Path) -> TemporaryDirectory | None:
+    """For a ROS 1 bag file named without ``.bag`` (rosbags tells ROS 1 from ROS 2 by that
+    suffix), a temporary folder holding a link to it under that suffix; None otherwise."""
+    if not path.is_file() or path.suffix == ".bag":
+        return None
+    with path.open("rb") as head:
+        if head.read(len(ROS1_MAGIC)) != ROS1_MAGIC:
+            return None
+    alias = TemporaryDirectory(prefix="trap_bag_")
+    (Path(alias.name) / f"{path.name}.bag").symlink_to(path.resolve())
+    return alias
 
 
 def image_topics(path: str | Path) -> dict[str, tuple[str, int]]:
@@ -146,7 +163,7 @@ def stamp_ns(header: object) -> int:
 
 
 def open_image_stream(path: str | Path, topic: str | None = None) -> ImageStream:
-    """Open ``path`` (a ROS 2 bag folder, ``.mcap``, ``.db3`` or ROS 1 ``.bag``) for streaming.
+    """Open ``path`` (a ROS 2 bag folder, ``.mcap``, ``.db3`` or a ROS 1 bag, ``.bag`` or not) for streaming.
 
     Parameters
     ----------

@@ -49,6 +49,12 @@ def in_rows(track: Track, rows: np.ndarray) -> Track:
                                points=None if track.points is None else track.points[rows])
 
 
+def track_pieces(track: Track, min_gap: int) -> list[np.ndarray]:
+    """Rows of each piece of the track: a run of its frames without a gap of more than
+    ``min_gap`` frames (where its object was occluded or out of view)."""
+    return np.split(np.arange(len(track)), np.flatnonzero(np.diff(track.frames) > min_gap) + 1)
+
+
 def box_centres(boxes: np.ndarray) -> np.ndarray:
     """Centres of boxes ``(x, y, w, h)`` (last axis), broadcast over the others."""
     return boxes[..., :2] + boxes[..., 2:4] / 2

@@ -28,7 +28,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from trap_core.clustering import (Track, box_centres, box_containment, box_iou, box_path, centre_inside, in_rows,
-                                  with_frames)
+                                  track_pieces, with_frames)
 from trap_core.robust.rejoin import reaches_border
 
 TURN = 0.1  # a velocity change of this share of the box size per frame is a turn, not jitter
@@ -191,7 +191,7 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
     for slot, track in enumerate(out):
         repeated = repeats_others(track, out[:slot] + out[slot + 1:], min_iou, min_inside, centred=True)
         keep = np.ones(len(track), dtype=bool)
-        for rows in np.split(np.arange(len(track)), np.flatnonzero(np.diff(track.frames) > min_gap) + 1):
+        for rows in track_pieces(track, min_gap):
             if np.mean(repeated[rows]) >= min_share:
                 keep[rows] = False
         out[slot] = in_rows(track, keep)

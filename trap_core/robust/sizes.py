@@ -13,7 +13,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, in_rows
+from trap_core.clustering import Track, in_rows, track_pieces
 
 
 def keep_one_size(tracks: Sequence[Track], min_gap: int, min_frames: int, factor: float = 4.0) -> list[Track]:
@@ -37,7 +37,7 @@ def keep_one_size(tracks: Sequence[Track], min_gap: int, min_frames: int, factor
     """
     out = []
     for track in tracks:
-        pieces = np.split(np.arange(len(track)), np.flatnonzero(np.diff(track.frames) > min_gap) + 1)
+        pieces = track_pieces(track, min_gap)
         areas = np.array([np.median(track.boxes[rows, 2] * track.boxes[rows, 3]) for rows in pieces])
         if areas.max() <= factor * areas.min():
             out.append(track)

@@ -8,7 +8,8 @@ segmented scaled down to ``max_side``), a camera that also turns and zooms ("cam
 other shapes ("shapes": tall, round, several shapes at once), a mix of all of these made later, on
 which the last three rules were chosen ("recent"), another made after those ("fresh"), one with
 more look-alikes ("newest") on which the three rules after those were checked, one made after
-those ("untouched"), and a last one made after every rule ("latest"). Prints, per video, the tracks found without being told the number
+those ("untouched"), and a last one made after every rule but the usual size from clear frames,
+which was made on it ("latest"). Prints, per video, the tracks found without being told the number
 of objects, each object's box precision/recall (%) and MOTA / IDF1 / HOTA; per set, the mean
 precision x recall, the share of objects at 90/90 or better and the mean MOTA / IDF1, and that
 share over all sets run; with ``--pictures DIR``, each video's tracks as a contact sheet and a
@@ -145,7 +146,7 @@ UNTOUCHED = [  # made after every rule, never tuned on
     ("identical, 640x360, noise 1, Felzenszwalb", dict(seed=178, identical=True, width=640, height=360, noise=1.0),
      "felzenszwalb"),
 ]
-LATEST = [  # made after the centre-test, long-meeting and one-size rules, never tuned on
+LATEST = [  # made after the centre-test, long-meeting and one-size rules; the clear-frame usual size was made on it
     ("distinct, 4 objects, 960x540, noise 1, Felzenszwalb",
      dict(seed=191, objects=4, width=960, height=540, noise=1.0), "felzenszwalb"),
     ("identical, person, turn 10 deg, zoom 10 %",

@@ -349,6 +349,54 @@ def test_oversized_boxes_outside_groups_get_the_usual_size_on_the_path() -> None
                                boxes)
 
 
+def test_the_usual_size_is_taken_where_no_other_track_touches_the_box() -> None:
+    """A look-alike passing close adds a strip of itself to the track's box for a long stretch
+    without the two ever forming a group: those boxes must not become the usual size."""
+    from trap_core.robust import separate_groups
+    frames = np.arange(80)
+    a = np.column_stack([100.0 + frames, np.full(80, 100.0), np.full(80, 40.0), np.full(80, 30.0)])
+    a[30:, 2] = 70.0  # a strip of b: 15 px of b's 40 inside, under half of b, so not a group
+    b = np.column_stack([155.0 + frames[30:], np.full(50, 100.0), np.full(50, 40.0), np.full(50, 30.0)])
+    out = separate_groups([_as_track(1, frames, a), _as_track(2, frames[30:], b)], 80, 640, 480, factor=1.5,
+                          window=10)
+    np.testing.assert_allclose(out[0].boxes[30:, 2:], [[40.0, 30.0]] * 50)
+    np.testing.assert_allclose(out[1].boxes, b)
+
+
+def test_the_usual_size_holds_where_a_track_is_rarely_clear_of_another() -> None:
+    """Two look-alikes merged for a long stretch, parted now and then by a few frames whose
+    boxes are still half-merged: the usual size is the median of as many clear boxes as the
+    window has frames, not of the few odd ones nearby."""
+    from trap_core.robust import separate_groups
+    frames = np.arange(100)
+    a = np.column_stack([100.0 + frames, np.full(100, 100.0), np.full(100, 40.0), np.full(100, 30.0)])
+    b = a + [40.0, 0.0, 0.0, 0.0]
+    b[:40, 0] += 60.0  # apart, then merged from frame 40 on
+    seen_a, seen_b = a.copy(), b.copy()
+    seen_a[40:, 2] = seen_b[40:, 2] = 80.0
+    seen_b[40:, 0] = a[40:, 0]
+    parted = [60, 80, 95]  # b ahead for one frame, a's box still 56 px wide
+    seen_a[parted, 2] = 56.0
+    seen_b[parted, 0] += 100.0
+    out = separate_groups([_as_track(1, frames, seen_a), _as_track(2, frames, seen_b)], 100, 640, 480, factor=1.5,
+                          window=10)
+    np.testing.assert_allclose(out[0].boxes[85:95], a[85:95])
+
+
+def test_the_usual_size_is_kept_apart_for_each_piece_of_a_track() -> None:
+    """After a gap (an exit, a zoom) a track may hold its object at another size: a piece's
+    usual size comes from its own frames only."""
+    from trap_core.robust import separate_groups
+    frames = np.concatenate([np.arange(30), np.arange(60, 66)])
+    boxes = np.column_stack([200.0 + frames, np.full(36, 200.0), np.full(36, 40.0), np.full(36, 30.0)])
+    boxes[30:, 2:] = [80.0, 60.0]
+    seen = boxes.copy()
+    seen[32, 2:] = [40.0, 30.0]  # one part of the larger object
+    seen[32, :2] += 20.0
+    out = separate_groups([_as_track(1, frames, seen)], 70, 640, 480, factor=1.5, window=10, min_gap=10)
+    np.testing.assert_allclose(out[0].boxes, boxes)
+
+
 def test_undersized_boxes_away_from_the_border_get_the_usual_size_around_them() -> None:
     """Noisy regions: in some frames the track's box is one part of the object, or a strip of
     region along its edge; at the border a shrinking box is the object cut by the view."""

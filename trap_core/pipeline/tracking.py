@@ -132,7 +132,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
                                    view=(width, height))
     if robust and (params.size_jump or params.groups):
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
-                                 groups=params.groups, patience=params.tau)
+                                 groups=params.groups, patience=params.tau, min_gap=params.tau)
     if robust and params.one_track:
         tracks = gaps_filled([drop_strays(t, max(3, params.tau // 3)) for t in tracks])
         alike = lookalike_tracks(tracks, labels, mined.st_pattern[clustered], occurrences, params.rejoin_similarity)
@@ -148,7 +148,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         tracks = continue_tracks(tracks, summary, spare, n_frames, max(3, params.tau // 2), params.eps, spare_track)
         tracks = gaps_filled(join_handovers(tracks, n_frames, max(3, params.tau // 2), params.eps))
         if params.size_jump:  # the continuations' boxes were not sized against their tracks yet
-            tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau, groups=False)
+            tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
+                                     groups=False, min_gap=params.tau)
         if not params.n_objects:
             tracks = keep_one_size(tracks, params.tau, int(params.min_track_length * n_frames))
     if robust and params.to_border:

@@ -6,8 +6,11 @@ where one object passes behind another, its patterns vanish and its track ends i
 other's box. Blob trackers meet the same merges and splits; here they are solved with what the
 tracks themselves know:
 
-* **usual size**: a track's running median width and height over the frames where it is alone
-  (its box does not overlap another track's), so a merge of any length does not move it;
+* **usual size**: a track's running median width and height over the frames where it is clear
+  (its box overlaps no other track's; if it never is, where it is in no group), the ``window``
+  nearest such frames on each side within the piece of the track (no gap over ``min_gap``): a
+  merge of any length, broken now and then by a few half-merged frames, does not move it, nor
+  does another piece (after an exit, a zoom);
 * **place**: in a group, each object's box has its usual size, inside the group box (which does
   hold both objects), centred where its own patterns are (their mean position, less its usual
   offset from the box centre when alone). An object without patterns there (hidden) takes the
@@ -40,7 +43,7 @@ HOLDS_MORE = 1.1  # a box this much wider or taller than its usual size holds mo
 
 def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height: float, factor: float = 1.5,
                     window: int = 100, border: float = 0.25, groups: bool = True,
-                    patience: int = 25) -> list[Track]:
+                    patience: int = 25, min_gap: int = 25) -> list[Track]:
     """Tracks with merged boxes split, odd-sized boxes given the usual size and occluded objects followed.
 
     Parameters
@@ -53,7 +56,7 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
         Outside groups, a box wider or taller than ``factor`` times the usual size is oversized,
         one ``factor`` times narrower or shorter undersized; 0 = leave boxes outside groups alone.
     window : int
-        Frames on each side of the running median of the usual size.
+        Clear frames on each side of the running median of the usual size.
     border : float
         A track whose last box is within this share of its size from the image border left the
         view: it is not followed as occluded.
@@ -62,6 +65,9 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
     patience : int
         Frames the group box may look like one object (a hidden object, the pair aligned) before
         an occluded track that did not come back ends.
+    min_gap : int
+        A gap of more than this many frames starts a new piece of a track, with a usual size of
+        its own.
 
     Returns
     -------
@@ -82,8 +88,9 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
         if inferred.any():
             partner = _partners(boxes)
     alone = partner < 0
-    usual = _running_median(boxes[..., 2:4], alone, window)
-    offset = _running_median(points - box_centres(boxes), alone, window)
+    preferred = (_clear(boxes), alone)  # the frames that show most of the object's own size
+    usual = _running_median(boxes[..., 2:4], preferred, window, min_gap)
+    offset = _running_median(points - box_centres(boxes), preferred, window, min_gap)
     centres = points - offset
     placed = boxes.copy()
     for slot in range(len(tracks)):
@@ -117,24 +124,36 @@ def _partners(boxes: np.ndarray) -> np.ndarray:
     return partner
 
 
-def _running_median(values: np.ndarray, alone: np.ndarray, window: int) -> np.ndarray:
-    """(T, F, k): per track, the running median of ``values`` (T, F, k; NaN where unknown) over
-    the frames it is alone in (all its frames if it never is), interpolated between them."""
+def _clear(boxes: np.ndarray) -> np.ndarray:
+    """(T, F): whether each track's box in each frame overlaps no other track's box."""
+    clear = ~np.isnan(boxes[..., 0])
+    for a in range(boxes.shape[0]):
+        for b in range(a + 1, boxes.shape[0]):
+            touching = box_containment(boxes[a], boxes[b]) > 0
+            clear[a] &= ~touching
+            clear[b] &= ~touching
+    return clear
+
+
+def _running_median(values: np.ndarray, preferred: Sequence[np.ndarray], window: int, min_gap: int) -> np.ndarray:
+    """(T, F, k): per track and piece (a run of its frames without a gap of more than
+    ``min_gap``), the running median of ``values`` (T, F, k; NaN where unknown) over the
+    ``window`` nearest frames on each side that the first of the (T, F) masks ``preferred``
+    holding any of the piece's frames marks (all the piece's frames if none does),
+    interpolated between them; NaN outside the pieces."""
     out = np.full(values.shape, np.nan)
     for slot in range(values.shape[0]):
-        known = ~np.isnan(values[slot]).any(axis=1)
-        frames = np.flatnonzero(known & alone[slot])
-        if frames.size == 0:
-            frames = np.flatnonzero(known)
-        if frames.size == 0:
-            continue
-        lo = np.searchsorted(frames, frames - window)
-        hi = np.searchsorted(frames, frames + window, side="right")
-        samples = values[slot, frames]
-        medians = np.array([np.median(samples[a:b], axis=0) for a, b in zip(lo, hi)])
-        everywhere = np.arange(values.shape[1])
-        for axis in range(values.shape[2]):
-            out[slot, :, axis] = np.interp(everywhere, frames, medians[:, axis])
+        known = np.flatnonzero(~np.isnan(values[slot]).any(axis=1))
+        for piece in np.split(known, np.flatnonzero(np.diff(known) > min_gap) + 1):
+            if piece.size == 0:
+                continue
+            frames = next((piece[mask[slot, piece]] for mask in preferred if mask[slot, piece].any()), piece)
+            samples = values[slot, frames]
+            medians = np.array([np.median(samples[max(i - window, 0):i + window + 1], axis=0)
+                                for i in range(frames.size)])
+            span = np.arange(piece[0], piece[-1] + 1)
+            for axis in range(values.shape[2]):
+                out[slot, span, axis] = np.interp(span, frames, medians[:, axis])
     return out
 
 

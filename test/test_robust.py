@@ -971,7 +971,8 @@ def test_lookalikes_travelling_together_keep_their_tracks_when_the_motion_around
 def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_ended() -> None:
     """The track holds frames 0-59 of an object moving right; cluster 0 goes on from frame 62
     where that motion puts it, cluster 1 starts at the same time 185 px away, cluster 2 goes on
-    in the right place but repeats the other track's boxes from frame 80."""
+    in the right place but repeats the other track's boxes from frame 80 (then, as the object
+    leaves a narrower view, has boxes clear of the border)."""
     from trap_core.clustering import summarise
     from trap_core.robust import continue_tracks
     t = np.arange(100, dtype=float)
@@ -985,15 +986,43 @@ def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_end
     frames = np.arange(100)
     cut = _as_track(1, frames[:60], boxes[:60])
     far_track = _as_track(2, frames, other)
-    out = continue_tracks([cut, far_track], summary, np.array([0, 1]), 100, 12, 40.0, built.__getitem__)
+    out = continue_tracks([cut, far_track], summary, np.array([0, 1]), 100, 640, 480, 12, 40.0, built.__getitem__)
     assert out[0].frames.tolist() == list(range(60)) + list(range(62, 100))
     np.testing.assert_allclose(out[0].boxes[60:], boxes[62:])
     assert len(out[1]) == 100
     repeating = boxes.copy()
     repeating[80:] = other[80:]
     built[2] = _as_track(0, np.arange(62, 100), repeating[62:])
-    out = continue_tracks([cut, far_track], summary, np.array([2]), 100, 12, 40.0, built.__getitem__)
+    out = continue_tracks([cut, far_track], summary, np.array([2]), 100, 640, 480, 12, 40.0, built.__getitem__)
     assert out[0].frames.tolist() == list(range(60)) + list(range(62, 80))
+    # In a view 250 px wide the track's last box reaches the right border: its object is leaving,
+    # and the candidate's first box must reach the border too (cluster 2 sits 100 px inside there).
+    built[2] = _as_track(0, np.arange(62, 100), boxes[62:] - [100.0, 0.0, 0.0, 0.0])
+    assert len(continue_tracks([cut, far_track], summary, np.array([2]), 100, 250, 480, 12, 40.0,
+                               built.__getitem__)[0]) == 60
+    assert len(continue_tracks([cut, far_track], summary, np.array([0]), 100, 250, 480, 12, 40.0,
+                               built.__getitem__)[0]) == 98
+
+
+def test_boxes_after_an_object_left_the_view_are_dropped() -> None:
+    """An object leaves through the left border (its box shrinks there to 5 px), then the
+    patterns go on with something else clear of the border: those boxes are not the object, nor
+    is a later box inside the view; one at the border is its return. An object that only dips
+    into the border and comes back keeps every box."""
+    from trap_core.robust import end_at_exits
+    frames = np.arange(40)
+    x = 100.0 - 5 * frames
+    boxes = np.column_stack([np.maximum(x, 0), np.full(40, 200.0), np.minimum(40.0, x + 40), np.full(40, 30.0)])
+    seen = boxes[:35].copy()
+    seen[28:] = np.column_stack([30.0 + 5 * np.arange(7), np.full(7, 200.0), np.full(7, 16.0), np.full(7, 30.0)])
+    out = end_at_exits(_as_track(1, frames[:35], seen), 640, 480, min_gap=12)
+    assert out.frames.tolist() == list(range(28))
+    back = np.column_stack([np.r_[300.0, 0.0], [200.0, 200.0], [40.0, 12.0], [30.0, 30.0]])
+    returns = _as_track(1, np.r_[frames[:35], 60, 80], np.vstack([seen, back]))  # inside, then through the border
+    assert end_at_exits(returns, 640, 480, min_gap=12).frames.tolist() == list(range(28)) + [80]
+    dipping = boxes[:35].copy()
+    dipping[28:, 2] = np.linspace(10, 40, 7)  # grows back at the border: never left
+    assert len(end_at_exits(_as_track(1, frames[:35], dipping), 640, 480, min_gap=12)) == 35
 
 
 def test_a_track_that_takes_over_where_another_ended_is_appended_to_it() -> None:

@@ -16,7 +16,7 @@ from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed,
                               continue_to_border, continue_tracks, drop_repeated_pieces, drop_shared_stretches,
-                              drop_still_regions, drop_strays, extend_from_twins, fill_gaps, grow_boxes,
+                              drop_still_regions, drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes,
                               join_handovers, keep_one_size, lookalike_tracks, mend_shared_stretches, merge_duplicates,
                               pattern_sizes, rejoin_fragments, separate_groups, split_mixed, swap_at_crossings,
                               world_speed)
@@ -145,7 +145,10 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, spare_track)
         tracks = drop_shared_stretches(tracks, n_frames, params.tau, max(3, params.tau // 2))
         tracks = drop_repeated_pieces(tracks, max(3, params.tau // 2))
-        tracks = continue_tracks(tracks, summary, spare, n_frames, max(3, params.tau // 2), params.eps, spare_track)
+        tracks = [end_at_exits(t, width, height, max(3, params.tau // 2)) for t in tracks]
+        tracks = continue_tracks(tracks, summary, spare, n_frames, width, height, max(3, params.tau // 2), params.eps,
+                                 spare_track)
+        tracks = [end_at_exits(t, width, height, max(3, params.tau // 2)) for t in tracks]  # and the continuations'
         tracks = gaps_filled(join_handovers(tracks, n_frames, max(3, params.tau // 2), params.eps))
         if params.size_jump:  # the continuations' boxes were not sized against their tracks yet
             tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,

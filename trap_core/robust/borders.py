@@ -1,4 +1,5 @@
-"""Track boxes continued while an object crosses the image border (ours).
+"""Tracks at the image border (ours): boxes continued while an object crosses it, and none
+after the object has left through it.
 
 An object that leaves the view is cut by the border frame after frame; its regions shrink and
 change, its patterns stop being found while part of it is still visible, and the track ends
@@ -7,13 +8,14 @@ would be had it kept its motion: its box when last fully in view moved at its ve
 those frames, clipped to the image. A track is continued so when its box reaches the border
 (:func:`reaches_border`) where it ends (starts), for as long as that box overlaps the image, at
 most ``max_frames``, and never into frames the track already covers. Such frames have no
-patterns of their own (:func:`with_inferred`).
+patterns of their own (:func:`with_inferred`). Once an object has left, the boxes its track goes
+on with inside the view are something else (:func:`end_at_exits`).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from trap_core.clustering import Track, box_centres
+from trap_core.clustering import Track, box_centres, in_rows
 from trap_core.robust.gaps import with_inferred
 from trap_core.robust.rejoin import reaches_border
 
@@ -86,3 +88,41 @@ def continue_to_border(track: Track, n_frames: int, width: float, height: float,
     if not added_frames:
         return track
     return with_inferred(track, np.array(added_frames), np.array(added_boxes))
+
+
+def end_at_exits(track: Track, width: float, height: float, min_gap: int, leaving: int = 3) -> Track:
+    """The track without the boxes that follow its object's exit from the view until it comes
+    back through the border.
+
+    An exit: over ``leaving`` frames the box lies on one image border, shrinking across it, and
+    ends less than half the track's usual extent across it (the median of its boxes fully in
+    view), and the next box is off that border. A body mostly out of view cannot be clear of
+    the border a frame later unless it moves half its size in a frame: the patterns went on with
+    something else (noise, a neighbour) once the object was gone. Nor can it come back but
+    through the border: boxes are dropped up to a run (after a gap of more than ``min_gap``
+    frames) whose first box reaches the border (:func:`reaches_border`).
+    """
+    boxes = track.boxes.astype(float)
+    x, y, w, h = boxes.T
+    sides = np.column_stack([x <= 0.5, y <= 0.5, x + w >= width - 0.5, y + h >= height - 0.5])
+    whole = ~sides.any(axis=1)
+    if not whole.any() or boxes.shape[0] <= leaving:
+        return track
+    extent = np.column_stack([w, h, w, h])
+    usual = np.median(extent[whole], axis=0)
+    frames = track.frames
+    entering = np.r_[True, np.diff(frames) > min_gap] & reaches_border(boxes, width, height)
+    keep = np.ones(frames.size, dtype=bool)
+    row = leaving - 1
+    while row < frames.size - 1:
+        span = np.arange(row - leaving + 1, row + 2)  # the leaving frames and the next
+        exit_side = (np.all(np.diff(frames[span]) == 1) & sides[span[:-1]].all(axis=0) & ~sides[row + 1]
+                     & (extent[row] < usual / 2) & np.all(np.diff(extent[span[:-1]], axis=0) <= 0, axis=0))
+        if exit_side.any():
+            back = np.flatnonzero(entering[row + 1:])
+            stop = row + 1 + (back[0] if back.size else frames.size)
+            keep[row + 1:stop] = False
+            row = stop + leaving - 1
+        else:
+            row += 1
+    return track if keep.all() else in_rows(track, keep)

@@ -27,10 +27,12 @@ from trap_core.clustering import (ClusterSummary, Track, box_centres, box_iou, b
                                   with_frames)
 from trap_core.robust.duplicates import repeats_others, same_boxes, shared_stretches
 from trap_core.robust.motion import straight_line
+from trap_core.robust.rejoin import reaches_border
 
 
 def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates: np.ndarray, n_frames: int,
-                    window: int, reach: float, build: Callable[[int], Track], min_iou: float = 0.5) -> list[Track]:
+                    width: float, height: float, window: int, reach: float, build: Callable[[int], Track],
+                    min_iou: float = 0.5) -> list[Track]:
     """Tracks that end more than ``window`` frames before the video, each continued by at most
     one of the clusters ``candidates``.
 
@@ -39,7 +41,10 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     at most ``reach`` px from where the track's motion (a straight line through its last
     ``window`` box centres) puts it; the closest one is taken, and its boxes (``build(cluster)``)
     after the track's end are appended, except where they repeat another track's box (IoU at
-    least ``min_iou``). A candidate continues one track only.
+    least ``min_iou``). A candidate continues one track only. Where the track's last box
+    reaches the border of the ``width`` x ``height`` frames (its object is leaving), the
+    candidate's first box appended must reach it too: one that starts clear of the border is
+    something else the patterns found once the object was gone.
     """
     out = list(tracks)
     taken: set[int] = set()
@@ -51,22 +56,26 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
         if line is None:
             continue
         velocity, origin = line
-        best, best_error = None, reach
+        near = []
         for cluster in candidates.tolist():
             after = np.flatnonzero(summary.covered[cluster, end + 1:]) + end + 1
             if cluster in taken or after.size < window or after[0] > end + window:
                 continue
             position = summary.paths.at(cluster, after[0])
             error = float(np.linalg.norm(position - (origin + velocity * after[0])))
-            if error <= best_error:
-                best, best_error = cluster, error
-        if best is None:
-            continue
-        follow = build(best)
-        follow = in_rows(follow, follow.frames > end)
-        follow = in_rows(follow, ~repeats_others(follow, [t for k, t in enumerate(out) if k != slot], min_iou))
-        out[slot] = with_frames(current, follow.frames, follow.boxes, follow.score, follow.points)
-        taken.add(best)
+            if error <= reach:
+                near.append((error, cluster))
+        leaving = reaches_border(current.boxes[-1:], width, height)[0]
+        others = [t for k, t in enumerate(out) if k != slot]
+        for _, cluster in sorted(near):
+            follow = build(cluster)
+            follow = in_rows(follow, follow.frames > end)
+            follow = in_rows(follow, ~repeats_others(follow, others, min_iou))
+            if leaving and not (len(follow) and reaches_border(follow.boxes[:1], width, height)[0]):
+                continue
+            out[slot] = with_frames(current, follow.frames, follow.boxes, follow.score, follow.points)
+            taken.add(cluster)
+            break
     return out
 
 

@@ -101,6 +101,20 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     something else (noise, a neighbour) once the object was gone. Nor can it come back but
     through the border: boxes are dropped up to a run (after a gap of more than ``min_gap``
     frames) whose first box reaches the border (:func:`reaches_border`).
+
+    Parameters
+    ----------
+    track : Track
+    width, height : float
+        Frame size.
+    min_gap : int
+        A gap of more than this many frames starts a new run of the track.
+    leaving : int
+        Frames the box must lie on the border, shrinking, before it is seen off it.
+
+    Returns
+    -------
+    Track
     """
     boxes = track.boxes.astype(float)
     x, y, w, h = boxes.T

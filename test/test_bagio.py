@@ -107,6 +107,19 @@ def test_storages_keep_stamps_and_frame_ids(tmp_path: Path, storage: str, name: 
     np.testing.assert_array_equal(read[-1].rgb, frames[-1])
 
 
+def test_ros1_alias_is_removed_when_the_stream_closes(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A ROS 1 bag named without .bag is read through a temporary link; closing removes it."""
+    import tempfile
+    temporary = tmp_path / "tmp"
+    temporary.mkdir()
+    monkeypatch.setattr(tempfile, "tempdir", str(temporary))
+    write_image_bag(tmp_path / "recording", _frames(count=3), storage="ros1")
+    with open_image_stream(tmp_path / "recording") as stream:
+        assert len(list(temporary.iterdir())) == 1
+        assert len(list(stream)) == 3
+    assert not list(temporary.iterdir())
+
+
 def test_bare_storage_file_is_readable(tmp_path: Path) -> None:
     write_image_bag(tmp_path / "bag", _frames(count=3))
     (storage_file,) = (tmp_path / "bag").glob("*.mcap")

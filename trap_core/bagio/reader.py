@@ -40,17 +40,31 @@ def _reason(error: BaseException) -> str:
     return text if len(text) < 300 else text[:297] + "..."
 
 
-def _open_reader(path: Path) -> AnyReader:
-    if not path.exists():
-        raise BagError(f"bag not found: {path}")
-    alias = _ros1_alias(path)
-    try:
-        reader = AnyReader([path if alias is None else Path(alias.name) / f"{path.name}.bag"])
-        reader.open()
-    except Exception as error:  # rosbags, sqlite3 and mcap raise many unrelated types
-        raise BagError(f"{path} is not a readable ROS 1 or ROS 2 bag: {_reason(error)}") from None
-    reader.trap_alias = alias  # the alias lives as long as the reader
-    return reader
+class _OpenBag:
+    """An open rosbags reader with, for a ROS 1 bag named without ``.bag``, the temporary alias
+    it reads through: closing one removes the other, so no link outlives the reading."""
+
+    def __init__(self, path: Path) -> None:
+        if not path.exists():
+            raise BagError(f"bag not found: {path}")
+        self._alias = _ros1_alias(path)
+        try:
+            self.reader = AnyReader([path if self._alias is None else Path(self._alias.name) / f"{path.name}.bag"])
+            self.reader.open()
+        except Exception as error:  # rosbags, sqlite3 and mcap raise many unrelated types
+            self._remove_alias()
+            raise BagError(f"{path} is not a readable ROS 1 or ROS 2 bag: {_reason(error)}") from None
+
+    def close(self) -> None:
+        """Close the reader and remove the alias (idempotent)."""
+        if self.reader.stack is not None:
+            self.reader.close()
+        self._remove_alias()
+
+    def _remove_alias(self) -> None:
+        if self._alias is not None:
+            self._alias.cleanup()
+            self._alias = None
 
 
 def _ros1_alias(path: Path) -> TemporaryDirectory | None:
@@ -68,11 +82,11 @@ def _ros1_alias(path: Path) -> TemporaryDirectory | None:
 
 def image_topics(path: str | Path) -> dict[str, tuple[str, int]]:
     """Return ``{topic: (message type, message count)}`` for every image topic of the bag."""
-    reader = _open_reader(Path(path))
+    bag = _OpenBag(Path(path))
     try:
-        return _image_topics(reader)
+        return _image_topics(bag.reader)
     finally:
-        reader.close()
+        bag.close()
 
 
 def _image_topics(reader: AnyReader) -> dict[str, tuple[str, int]]:
@@ -92,11 +106,12 @@ class ImageStream:
 
     def __init__(self, path: str | Path, topic: str | None = None) -> None:
         self.path = Path(path)
-        self._reader = _open_reader(self.path)
+        self._bag = _OpenBag(self.path)
+        self._reader = self._bag.reader
         try:
             self.topic, self.msgtype, self.count = self._choose_topic(topic)
         except BagError:
-            self._reader.close()
+            self._bag.close()
             raise
 
     def _choose_topic(self, topic: str | None) -> tuple[str, str, int]:
@@ -146,8 +161,7 @@ class ImageStream:
 
     def close(self) -> None:
         """Release the bag files (idempotent)."""
-        if self._reader.stack is not None:
-            self._reader.close()
+        self._bag.close()
 
     def __enter__(self) -> ImageStream:
         return self

@@ -1,20 +1,21 @@
 #!/usr/bin/env python3
 """Benchmark: tracking quality of the defaults on synthetic videos with ground truth.
 
-Eleven sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
+Twelve sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
 presets, seeds 0-2), the variants looked at while the robust rules were chosen ("tuned"), variants
 never looked at while choosing them ("held-out"), frames larger than the working size ("larger",
 segmented scaled down to ``max_side``), a camera that also turns and zooms ("camera"), objects of
 other shapes ("shapes": tall, round, several shapes at once), a mix of all of these made later, on
 which the last three rules were chosen ("recent"), another made after those ("fresh"), one with
 more look-alikes ("newest") on which the three rules after those were checked, one made after
-those ("untouched"), and a last one made after every rule but the usual size from clear frames,
-which was made on it ("latest"). Prints, per video, the tracks found without being told the number
-of objects, each object's box precision/recall (%) and MOTA / IDF1 / HOTA; per set, the mean
-precision x recall, the share of objects at 90/90 or better and the mean MOTA / IDF1, and that
-share over all sets run; with ``--pictures DIR``, each video's tracks as a contact sheet and a
-timeline. Graphs are cached (``--cache``), so a second run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,latest] [-p name:=value]``
+those ("untouched"), one made after every rule but the usual size from clear frames, which was
+made on it ("latest"), and a last one made after that ("unseen"). Prints, per video, the tracks
+found without being told the number of objects, each object's box precision/recall (%) and
+MOTA / IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90 or
+better and the mean MOTA / IDF1, and that share over all sets run; with ``--pictures DIR``, each
+video's tracks as a contact sheet and a timeline. Graphs are cached (``--cache``), so a second
+run only tracks.
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,unseen] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
@@ -163,10 +164,22 @@ LATEST = [  # made after the centre-test, long-meeting and one-size rules; the c
     ("identical, mixed shapes, 4 objects, 1024x576, noise 1, Felzenszwalb",
      dict(seed=198, identical=True, shape="mixed", objects=4, width=1024, height=576, noise=1.0), "felzenszwalb"),
 ]
+UNSEEN = [  # made after the clear-frame usual size and exit rules, never tuned on
+    ("identical, 4 objects, noise 1.5, Felzenszwalb", dict(seed=201, identical=True, objects=4, noise=1.5),
+     "felzenszwalb"),
+    ("distinct, person, zoom 15 %", dict(seed=202, shape="person", zoom=0.15), "colour"),
+    ("identical, 5 objects 1.2x", dict(seed=203, identical=True, objects=5, object_scale=1.2), "colour"),
+    ("identical, disc, turn 10 deg, noise 1, Felzenszwalb",
+     dict(seed=204, identical=True, shape="disc", rotation=10.0, noise=1.0), "felzenszwalb"),
+    ("identical, mixed shapes, 4 objects, zoom 10 %",
+     dict(seed=205, identical=True, shape="mixed", objects=4, zoom=0.1), "colour"),
+    ("identical, car, 4 objects, noise 1, Felzenszwalb",
+     dict(seed=206, identical=True, shape="car", objects=4, noise=1.0), "felzenszwalb"),
+]
 FELZENSZWALB_ONLY = ("k", "sigma", "min_size", "threshold", "connectivity")  # no effect on exact-colour regions
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
         "shapes": SHAPES, "recent": RECENT, "fresh": FRESH,
-        "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST}
+        "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST, "unseen": UNSEEN}
 
 
 def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None = None,

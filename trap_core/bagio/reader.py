@@ -107,7 +107,6 @@ class ImageStream:
     def __init__(self, path: str | Path, topic: str | None = None) -> None:
         self.path = Path(path)
         self._bag = _OpenBag(self.path)
-        self._reader = self._bag.reader
         try:
             self.topic, self.msgtype, self.count = self._choose_topic(topic)
         except BagError:
@@ -115,14 +114,14 @@ class ImageStream:
             raise
 
     def _choose_topic(self, topic: str | None) -> tuple[str, str, int]:
-        topics = _image_topics(self._reader)
+        topics = _image_topics(self._bag.reader)
         if topic is not None:
             if topic not in topics:
                 known = ", ".join(sorted(topics)) or "none"
                 raise BagError(f"no image topic {topic!r} in {self.path} (image topics: {known})")
             return topic, *topics[topic]
         if not topics:
-            others = ", ".join(sorted({c.topic for c in self._reader.connections})) or "none"
+            others = ", ".join(sorted({c.topic for c in self._bag.reader.connections})) or "none"
             raise BagError(f"{self.path} holds no sensor_msgs/Image or CompressedImage topic (topics: {others})")
         if len(topics) > 1:
             raise BagError(f"{self.path} holds several image topics, choose one with --topic: "
@@ -131,13 +130,13 @@ class ImageStream:
         return only, *topics[only]
 
     def __iter__(self) -> Iterator[ImageFrame]:
-        connections = [c for c in self._reader.connections if c.topic == self.topic]
-        messages = self._reader.messages(connections=connections)
+        connections = [c for c in self._bag.reader.connections if c.topic == self.topic]
+        messages = self._bag.reader.messages(connections=connections)
         index = 0
         while True:
             try:
                 connection, _, raw = next(messages)
-                message = self._reader.deserialize(raw, connection.msgtype)
+                message = self._bag.reader.deserialize(raw, connection.msgtype)
             except StopIteration:
                 return
             except Exception as error:  # a truncated or corrupt chunk surfaces here

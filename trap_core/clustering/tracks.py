@@ -49,10 +49,11 @@ def in_rows(track: Track, rows: np.ndarray) -> Track:
                                points=None if track.points is None else track.points[rows])
 
 
-def track_pieces(track: Track, min_gap: int) -> list[np.ndarray]:
-    """Rows of each piece of the track: a run of its frames without a gap of more than
-    ``min_gap`` frames (where its object was occluded or out of view)."""
-    return np.split(np.arange(len(track)), np.flatnonzero(np.diff(track.frames) > min_gap) + 1)
+def track_pieces(frames: np.ndarray, min_gap: int) -> list[np.ndarray]:
+    """Rows of each piece of a track with the (increasing) ``frames``: a run of its frames
+    without a gap of more than ``min_gap`` frames (where its object was occluded or out of
+    view)."""
+    return np.split(np.arange(len(frames)), np.flatnonzero(np.diff(frames) > min_gap) + 1)
 
 
 def box_centres(boxes: np.ndarray) -> np.ndarray:

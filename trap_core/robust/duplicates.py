@@ -191,7 +191,7 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
     for slot, track in enumerate(out):
         repeated = repeats_others(track, out[:slot] + out[slot + 1:], min_iou, min_inside, centred=True)
         keep = np.ones(len(track), dtype=bool)
-        for rows in track_pieces(track, min_gap):
+        for rows in track_pieces(track.frames, min_gap):
             if np.mean(repeated[rows]) >= min_share:
                 keep[rows] = False
         out[slot] = in_rows(track, keep)

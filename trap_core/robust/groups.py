@@ -34,7 +34,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, box_centres, box_containment
+from trap_core.clustering import Track, box_centres, box_containment, track_pieces
 from trap_core.robust.rejoin import reaches_border
 
 GROUPED = 0.5  # share of the smaller box inside the other: the two boxes hold the same regions
@@ -81,20 +81,23 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
         boxes[slot, t.frames] = t.boxes
         if t.points is not None:
             points[slot, t.frames] = t.points
-    partner = _partners(boxes) if groups else np.full(boxes.shape[:2], -1)
+    shared = _shares(boxes)
+    partner = _partners(shared) if groups else np.full(boxes.shape[:2], -1)
     inferred = np.zeros(boxes.shape[:2], dtype=bool)
     if groups:
         inferred = _follow_occluded(boxes, partner, width, height, border, window, patience)
         if inferred.any():
-            partner = _partners(boxes)
+            shared = _shares(boxes)
+            partner = _partners(shared)
     alone = partner < 0
-    preferred = (_clear(boxes), alone)  # the frames that show most of the object's own size
+    clear = ~np.isnan(boxes[..., 0]) & ~np.any(shared > 0, axis=1)  # its box overlaps no other track's
+    preferred = (clear, alone)  # the frames that show most of the object's own size
     usual = _running_median(boxes[..., 2:4], preferred, window, min_gap)
     offset = _running_median(points - box_centres(boxes), preferred, window, min_gap)
     centres = points - offset
     placed = boxes.copy()
     for slot in range(len(tracks)):
-        _split(placed, boxes, usual, centres, partner, slot)
+        _split(placed, boxes, usual, centres, partner, shared, slot)
         if factor > 0:
             _shrink_oversized(placed[slot], usual[slot], alone[slot], factor)
             _grow_undersized(placed[slot], usual[slot], alone[slot], factor, width, height)
@@ -109,30 +112,23 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
     return out
 
 
-def _partners(boxes: np.ndarray) -> np.ndarray:
-    """(T, F): the track each track's box is grouped with in each frame (most overlap), -1 if none."""
-    n_tracks, n_frames = boxes.shape[:2]
-    best = np.zeros((n_tracks, n_frames))
-    partner = np.full((n_tracks, n_frames), -1)
+def _shares(boxes: np.ndarray) -> np.ndarray:
+    """(T, T, F): per frame, the share of the smaller of two tracks' boxes that lies in the other
+    (0 on the diagonal and where a box is absent)."""
+    n_tracks = boxes.shape[0]
+    shared = np.zeros((n_tracks, n_tracks, boxes.shape[1]))
     for a in range(n_tracks):
         for b in range(a + 1, n_tracks):
-            shared = box_containment(boxes[a], boxes[b])
-            for me, other in ((a, b), (b, a)):
-                better = (shared > GROUPED) & (shared > best[me])
-                best[me, better] = shared[better]
-                partner[me, better] = other
-    return partner
+            shared[a, b] = shared[b, a] = box_containment(boxes[a], boxes[b])
+    return shared
 
 
-def _clear(boxes: np.ndarray) -> np.ndarray:
-    """(T, F): whether each track's box in each frame overlaps no other track's box."""
-    clear = ~np.isnan(boxes[..., 0])
-    for a in range(boxes.shape[0]):
-        for b in range(a + 1, boxes.shape[0]):
-            touching = box_containment(boxes[a], boxes[b]) > 0
-            clear[a] &= ~touching
-            clear[b] &= ~touching
-    return clear
+def _partners(shared: np.ndarray) -> np.ndarray:
+    """(T, F): the track each track's box is grouped with in each frame (most overlap, the first
+    of equals), -1 if none; ``shared`` as :func:`_shares` gives it."""
+    best = shared.argmax(axis=1)
+    grouped = np.take_along_axis(shared, best[:, None], axis=1)[:, 0] > GROUPED
+    return np.where(grouped, best, -1)
 
 
 def _running_median(values: np.ndarray, preferred: Sequence[np.ndarray], window: int, min_gap: int) -> np.ndarray:
@@ -144,7 +140,8 @@ def _running_median(values: np.ndarray, preferred: Sequence[np.ndarray], window:
     out = np.full(values.shape, np.nan)
     for slot in range(values.shape[0]):
         known = np.flatnonzero(~np.isnan(values[slot]).any(axis=1))
-        for piece in np.split(known, np.flatnonzero(np.diff(known) > min_gap) + 1):
+        for rows in track_pieces(known, min_gap):
+            piece = known[rows]
             if piece.size == 0:
                 continue
             frames = next((piece[mask[slot, piece]] for mask in preferred if mask[slot, piece].any()), piece)
@@ -206,16 +203,16 @@ def _lasting(flags: np.ndarray, patience: int) -> int:
 
 
 def _split(placed: np.ndarray, boxes: np.ndarray, usual: np.ndarray, centres: np.ndarray, partner: np.ndarray,
-           slot: int) -> None:
+           shared: np.ndarray, slot: int) -> None:
     """In the frames where track ``slot`` is grouped, its usual-size box inside the group box:
     at the centre its patterns give, else away from its partner's, else at its side of the pair
     when seen apart (in place). ``centres``: (T, F, 2) object centres from the patterns, NaN
-    where a track has none."""
+    where a track has none; ``shared`` as :func:`_shares` gives it."""
     for other in np.unique(partner[slot][partner[slot] >= 0]):
         grouped = np.flatnonzero(partner[slot] == other)
         box = boxes[slot, grouped]
         apart = np.flatnonzero(~np.isnan(boxes[slot, :, 0]) & ~np.isnan(boxes[other, :, 0])
-                               & (box_containment(boxes[slot], boxes[other]) <= GROUPED))
+                               & (shared[slot, other] <= GROUPED))
         for axis in (0, 1):
             size = np.minimum(usual[slot, grouped, axis], box[:, 2 + axis])
             room = box[:, 2 + axis] - size

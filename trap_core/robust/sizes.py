@@ -37,7 +37,7 @@ def keep_one_size(tracks: Sequence[Track], min_gap: int, min_frames: int, factor
     """
     out = []
     for track in tracks:
-        pieces = track_pieces(track, min_gap)
+        pieces = track_pieces(track.frames, min_gap)
         areas = np.array([np.median(track.boxes[rows, 2] * track.boxes[rows, 3]) for rows in pieces])
         if areas.max() <= factor * areas.min():
             out.append(track)

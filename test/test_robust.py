@@ -1093,7 +1093,7 @@ def test_a_track_that_takes_over_after_travelling_with_another_object_is_appende
 def test_a_piece_of_a_track_on_another_tracks_object_is_dropped() -> None:
     """Track 2 holds its own object in frames 0-39 and, after a 30-frame gap, track 1's object
     in 70-99 (IoU 0.8, a box inside track 1's, or one whose centre is in it): that piece goes. A piece on track 1's object
-    in only half its frames stays."""
+    in only half its frames stays. A piece after a jump across 100 px goes as one after a gap."""
     from trap_core.robust import drop_repeated_pieces
     t = np.arange(100, dtype=float)
     first = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
@@ -1110,8 +1110,12 @@ def test_a_piece_of_a_track_on_another_tracks_object_is_dropped() -> None:
     off[40:] = first[70:] + [15.0, 10.0, 0.0, 0.0]  # half a size off: IoU 0.26, its centre in the box
     assert drop_repeated_pieces([tracks[0], _as_track(2, frames, off)], 12)[1].frames.tolist() == list(range(40))
     half = back.copy()
-    half[55:] = second[85:]
+    half[55:] = first[85:] + [0.0, 35.0, 0.0, 0.0]  # beside it, less than a size away: no jump
     assert len(drop_repeated_pieces([tracks[0], _as_track(2, frames, half)], 12)[1]) == 70
+    # No gap, but a jump: track 2 holds its own object in 0-39 and goes over to track 1's in 40-99.
+    jumping = np.vstack([second[:40], first[40:]])
+    assert drop_repeated_pieces([tracks[0], _as_track(2, np.arange(100), jumping)], 12)[1].frames.tolist() == \
+        list(range(40))
 
 
 def test_a_track_whose_pieces_change_size_keeps_the_size_it_holds_longest() -> None:

@@ -49,11 +49,16 @@ def in_rows(track: Track, rows: np.ndarray) -> Track:
                                points=None if track.points is None else track.points[rows])
 
 
-def track_pieces(frames: np.ndarray, min_gap: int) -> list[np.ndarray]:
+def track_pieces(frames: np.ndarray, min_gap: int, boxes: np.ndarray | None = None) -> list[np.ndarray]:
     """Rows of each piece of a track with the (increasing) ``frames``: a run of its frames
     without a gap of more than ``min_gap`` frames (where its object was occluded or out of
-    view)."""
-    return np.split(np.arange(len(frames)), np.flatnonzero(np.diff(frames) > min_gap) + 1)
+    view) and, given its ``boxes``, without a jump of the box centre by more than the larger
+    box's extent from one box to the next (where the track went over to another object)."""
+    cuts = np.diff(frames) > min_gap
+    if boxes is not None and len(boxes) > 1:
+        step = np.linalg.norm(np.diff(box_centres(boxes), axis=0), axis=1)
+        cuts |= step > np.maximum(boxes[:-1, 2:4].max(axis=1), boxes[1:, 2:4].max(axis=1))
+    return np.split(np.arange(len(frames)), np.flatnonzero(cuts) + 1)
 
 
 def box_centres(boxes: np.ndarray) -> np.ndarray:

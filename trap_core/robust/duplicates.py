@@ -179,7 +179,9 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
                          min_share: float = 0.8) -> list[Track]:
     """Tracks without pieces that repeat other tracks' boxes; tracks left empty are dropped.
 
-    A piece is a run of a track's frames without a gap of more than ``min_gap`` frames. Where a
+    A piece is a run of a track's frames without a gap of more than ``min_gap`` frames, nor a
+    jump of its box by more than its size from one box to the next (where a box borrowed for a
+    stretch, :func:`trap_core.robust.mend_shared_stretches`, meets the track's own). Where a
     piece's boxes hold another track's object (:func:`same_boxes`, or the centre of the smaller
     box lies in the other: a piece on part of it, or off it by less than half a size) in at
     least ``min_share`` of its frames, its object is tracked already there: a path that went on
@@ -191,7 +193,7 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
     for slot, track in enumerate(out):
         repeated = repeats_others(track, out[:slot] + out[slot + 1:], min_iou, min_inside, centred=True)
         keep = np.ones(len(track), dtype=bool)
-        for rows in track_pieces(track.frames, min_gap):
+        for rows in track_pieces(track.frames, min_gap, track.boxes):
             if np.mean(repeated[rows]) >= min_share:
                 keep[rows] = False
         out[slot] = in_rows(track, keep)

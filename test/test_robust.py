@@ -627,7 +627,7 @@ def test_a_cluster_of_jittering_patterns_is_still_and_a_moving_one_is_not() -> N
     assert still > 2.0 and moves < 1e-6  # the first moves against the world, the second with it
 
 
-def test_short_gaps_get_interpolated_boxes_long_ones_stay_empty() -> None:
+def test_short_gaps_get_interpolated_boxes_long_or_far_ones_stay_empty() -> None:
     from trap_core.clustering import Track
     from trap_core.robust import fill_gaps
     frames = np.array([0, 1, 4, 5, 40, 41])  # a 2-frame gap, then a 34-frame one
@@ -639,6 +639,11 @@ def test_short_gaps_get_interpolated_boxes_long_ones_stay_empty() -> None:
     np.testing.assert_allclose(filled.score[2:4], 0.3)  # half the lowest observed confidence
     assert np.isnan(filled.points[2:4]).all() and not np.isnan(filled.points[[0, 1, 4, 5, 6, 7]]).any()
     assert fill_gaps(track, max_gap=1) is track
+    # After a 9-frame gap a box 400 px on, where the object goes 10 px a frame (3 times that
+    # pace over 10 frames and half a size of jitter reach 310 px): no line between the two.
+    far = Track(1, np.array([0, 1, 4, 14]), np.vstack([boxes[:3], boxes[2] + [400.0, 0.0, 0.0, 0.0]]),
+                np.ones(4), 1, np.ones((4, 2)))
+    assert fill_gaps(far, max_gap=25).frames.tolist() == [0, 1, 2, 3, 4, 14]
 
 
 def test_a_track_ending_at_the_border_follows_its_object_out_of_view() -> None:

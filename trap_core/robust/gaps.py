@@ -5,20 +5,28 @@ regions the patterns are missed here and there for a frame or a few, and the tra
 although the object never left. Occurrence linking already treats gaps of up to ``tau`` frames
 as one path; the boxes do the same: in a gap of at most ``max_gap`` frames each box side is
 interpolated linearly between the boxes on either side. Such frames have no patterns of their
-own (``points`` NaN) and half the track's lowest observed confidence.
+own (``points`` NaN) and half the track's lowest observed confidence. A gap whose two sides lie
+farther apart than the object goes in that time is not its object hidden for a while but two
+things the track's boxes hold: a line between them would cross the frame on nothing.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from trap_core.clustering import Track, with_frames
+from trap_core.clustering import Track, box_centres, usual_size, with_frames
 
 
-def fill_gaps(track: Track, max_gap: int) -> Track:
-    """The track with a box in every frame of its gaps of at most ``max_gap`` frames."""
+def fill_gaps(track: Track, max_gap: int, pace: float = 3.0) -> Track:
+    """The track with a box in every frame of its gaps of at most ``max_gap`` frames whose
+    sides are no farther apart than its object goes at ``pace`` times its usual speed (median
+    centre step between consecutive frames), plus half its usual size (box jitter)."""
     frames = track.frames
     gap = np.diff(frames) - 1
     short = (gap > 0) & (gap <= max_gap)
+    if short.any():
+        step = np.linalg.norm(np.diff(box_centres(track.boxes), axis=0), axis=1)
+        speed = float(np.median(step[gap == 0])) if np.any(gap == 0) else np.inf
+        short &= step <= pace * speed * (gap + 1) + 0.5 * usual_size(track)
     if not short.any():
         return track
     missing = np.concatenate([np.arange(a + 1, b) for a, b in zip(frames[:-1][short], frames[1:][short])])

@@ -976,8 +976,8 @@ def test_lookalikes_travelling_together_keep_their_tracks_when_the_motion_around
 def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_ended() -> None:
     """The track holds frames 0-59 of an object moving right; cluster 0 goes on from frame 62
     where that motion puts it, cluster 1 starts at the same time 185 px away, cluster 2 goes on
-    in the right place but repeats the other track's boxes from frame 80 (then, as the object
-    leaves a narrower view, has boxes clear of the border)."""
+    in the right place but repeats the other track's boxes from frame 80 (or has boxes around
+    them; or, as the object leaves a narrower view, boxes clear of the border)."""
     from trap_core.clustering import summarise
     from trap_core.robust import continue_tracks
     t = np.arange(100, dtype=float)
@@ -1007,6 +1007,16 @@ def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_end
                                built.__getitem__)[0]) == 60
     assert len(continue_tracks([cut, far_track], summary, np.array([0]), 100, 250, 480, 12, 40.0,
                                built.__getitem__)[0]) == 98
+    # A track with a later piece (frames 90-99) is continued in the gap between its pieces only.
+    pieces = _as_track(1, np.r_[0:60, 90:100], boxes[np.r_[0:60, 90:100]])
+    out = continue_tracks([pieces, far_track], summary, np.array([0]), 100, 640, 480, 12, 40.0, built.__getitem__)
+    assert out[0].frames.tolist() == list(range(60)) + list(range(62, 100))
+    # Boxes around the other track's object (IoU 0.44, its centre inside them) are not appended either.
+    around = boxes.copy()
+    around[80:] = other[80:] * [1.0, 1.0, 1.5, 1.5] - [10.0, 7.5, 0.0, 0.0]
+    built[2] = _as_track(0, np.arange(62, 100), around[62:])
+    out = continue_tracks([cut, far_track], summary, np.array([2]), 100, 640, 480, 12, 40.0, built.__getitem__)
+    assert out[0].frames.tolist() == list(range(60)) + list(range(62, 80))
 
 
 def test_boxes_after_an_object_left_the_view_are_dropped() -> None:

@@ -4,7 +4,8 @@ Where an object passes behind a look-alike, its patterns' paths can go on with t
 object; :func:`trap_core.robust.drop_shared_stretches` then ends its track there. The object's
 own patterns after the meeting often make a cluster of their own that starts where the track
 ended but is too short to be selected, and overlaps the track's cluster in time too much to be
-rejoined to it. :func:`continue_tracks` appends it.
+rejoined to it. :func:`continue_tracks` appends it, after the track's last frame or in a gap
+between two of its pieces (where a stretch on another object was dropped from the middle).
 
 When such a cluster was long enough to be selected, the object's path after the meeting is a
 track of its own, often starting on the other object (for as long as the two are in one place,
@@ -33,50 +34,67 @@ from trap_core.robust.rejoin import reaches_border
 def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates: np.ndarray, n_frames: int,
                     width: float, height: float, window: int, reach: float, build: Callable[[int], Track],
                     min_iou: float = 0.5) -> list[Track]:
-    """Tracks that end more than ``window`` frames before the video, each continued by at most
-    one of the clusters ``candidates``.
+    """Tracks whose pieces that end more than ``window`` frames before the track's next one (or
+    the video's end) are each continued by at most one of the clusters ``candidates``.
 
-    A candidate continues a track if it covers at least ``window`` frames after the track's last
-    one, the first of them at most ``window`` frames after it, and there its mean position is
-    at most ``reach`` px from where the track's motion (a straight line through its last
-    ``window`` box centres) puts it; the closest one is taken, and its boxes (``build(cluster)``)
-    after the track's end are appended, except where they repeat another track's box (IoU at
-    least ``min_iou``). A candidate continues one track only. Where the track's last box
-    reaches the border of the ``width`` x ``height`` frames (its object is leaving), the
-    candidate's first box appended must reach it too: one that starts clear of the border is
-    something else the patterns found once the object was gone.
+    A candidate continues a piece if it covers at least ``window`` frames after the piece's last
+    one and before the next piece, the first of them at most ``window`` frames after it, and
+    there its mean position is at most ``reach`` px from where the piece's motion (a straight
+    line through its last ``window`` box centres) puts it; the closest one is taken, and its
+    boxes (``build(cluster)``) between the two pieces are appended, except where they repeat
+    another track's box (IoU at least ``min_iou``, or the centre of the smaller box lies in the
+    other: boxes around an object tracked already). A candidate continues one piece only. Where
+    the piece's last box reaches the border of the ``width`` x ``height`` frames (its object is
+    leaving), the candidate's first box appended must reach it too: one that starts clear of the
+    border is something else the patterns found once the object was gone.
     """
     out = list(tracks)
     taken: set[int] = set()
-    for slot, current in enumerate(out):
-        end = int(current.frames[-1])
-        if end >= n_frames - window:
-            continue
-        line = _motion_at_end(current, window)
-        if line is None:
-            continue
-        velocity, origin = line
-        near = []
-        for cluster in candidates.tolist():
-            after = np.flatnonzero(summary.covered[cluster, end + 1:]) + end + 1
-            if cluster in taken or after.size < window or after[0] > end + window:
-                continue
-            position = summary.paths.at(cluster, after[0])
-            error = float(np.linalg.norm(position - (origin + velocity * after[0])))
-            if error <= reach:
-                near.append((error, cluster))
-        leaving = reaches_border(current.boxes[-1:], width, height)[0]
-        others = [t for k, t in enumerate(out) if k != slot]
-        for _, cluster in sorted(near):
-            follow = build(cluster)
-            follow = in_rows(follow, follow.frames > end)
-            follow = in_rows(follow, ~repeats_others(follow, others, min_iou))
-            if leaving and not (len(follow) and reaches_border(follow.boxes[:1], width, height)[0]):
-                continue
-            out[slot] = with_frames(current, follow.frames, follow.boxes, follow.score, follow.points)
-            taken.add(cluster)
-            break
+    for slot in range(len(out)):
+        frames = out[slot].frames
+        ends = np.flatnonzero(np.diff(np.append(frames, n_frames)) > window)
+        for end, resume in zip(frames[ends].tolist(), np.append(frames, n_frames)[ends + 1].tolist()):
+            found = _continuation(out, slot, (end, resume), summary, candidates, taken, (width, height),
+                                  window, reach, build, min_iou)
+            if found is not None:
+                follow, cluster = found
+                out[slot] = with_frames(out[slot], follow.frames, follow.boxes, follow.score, follow.points)
+                taken.add(cluster)
     return out
+
+
+def _continuation(tracks: list[Track], slot: int, between: tuple[int, int], summary: ClusterSummary,
+                  candidates: np.ndarray, taken: set[int], view: tuple[float, float], window: int, reach: float,
+                  build: Callable[[int], Track], min_iou: float) -> tuple[Track, int] | None:
+    """The boxes of the closest candidate that continues track ``slot``'s piece ending at the
+    first frame of ``between`` up to (not including) its second, and that candidate; None if
+    none does (see :func:`continue_tracks`)."""
+    end, resume = between
+    current = tracks[slot]
+    line = _motion_at(current, end, window)
+    if line is None:
+        return None
+    velocity, origin = line
+    near = []
+    for cluster in candidates.tolist():
+        after = np.flatnonzero(summary.covered[cluster, end + 1:resume]) + end + 1
+        if cluster in taken or after.size < window or after[0] > end + window:
+            continue
+        position = summary.paths.at(cluster, after[0])
+        error = float(np.linalg.norm(position - (origin + velocity * after[0])))
+        if error <= reach:
+            near.append((error, cluster))
+    last = current.boxes[current.frames == end]
+    leaving = reaches_border(last, *view)[0]
+    others = [t for k, t in enumerate(tracks) if k != slot]
+    for _, cluster in sorted(near):
+        follow = build(cluster)
+        follow = in_rows(follow, (follow.frames > end) & (follow.frames < resume))
+        follow = in_rows(follow, ~repeats_others(follow, others, min_iou, centred=True))
+        if leaving and not (len(follow) and reaches_border(follow.boxes[:1], *view)[0]):
+            continue
+        return follow, cluster
+    return None
 
 
 def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: float, min_iou: float = 0.5
@@ -100,7 +118,7 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
     while slot < len(out):
         current = out[slot]
         end = int(current.frames[-1])
-        line = _motion_at_end(current, window) if end < n_frames - window else None
+        line = _motion_at(current, end, window) if end < n_frames - window else None
         if line is None:
             slot += 1
             continue
@@ -218,8 +236,7 @@ def _within(points: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     return np.all((points >= boxes[..., :2]) & (points <= boxes[..., :2] + boxes[..., 2:4]), axis=-1)
 
 
-def _motion_at_end(track: Track, window: int) -> tuple[np.ndarray, np.ndarray] | None:
-    """Velocity and origin of the straight line through the track's last ``window`` frames'
-    box centres (:func:`straight_line`), None where too few."""
-    end = int(track.frames[-1])
-    return straight_line(centre_path(track, end + 1), np.arange(max(end + 1 - window, 0), end + 1))
+def _motion_at(track: Track, end: int, window: int) -> tuple[np.ndarray, np.ndarray] | None:
+    """Velocity and origin of the straight line through the track's box centres in the
+    ``window`` frames up to ``end`` (:func:`straight_line`), None where too few."""
+    return straight_line(centre_path(track, int(track.frames[-1]) + 1), np.arange(max(end + 1 - window, 0), end + 1))

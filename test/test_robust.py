@@ -736,6 +736,19 @@ def test_a_stretch_on_another_tracks_object_is_dropped_from_the_track_that_turne
     assert out[1].frames.tolist() == list(range(60)) + list(range(100, 160))
 
 
+def test_a_stretch_begins_where_a_track_holds_part_of_the_other_tracks_object() -> None:
+    """Track 2's object passes behind track 1's at frame 60: for 12 frames its box is the part
+    left in view, inside track 1's box (IoU under 0.5), then it matches track 1's. The stretch
+    begins at 60, where track 2 turns: it loses it. Timed from frame 72, where the boxes first
+    match, its motion over the frames before is already track 1's, and it would keep it."""
+    from trap_core.robust import drop_shared_stretches
+    left, right = _crossing()
+    right[60:72] = left[60:72] * [1.0, 1.0, 0.3, 0.5] + [14.0, 7.5, 0.0, 0.0]
+    frames = np.arange(100)
+    out = drop_shared_stretches([_as_track(1, frames, left), _as_track(2, frames, right)], 100, 25, 12)
+    assert len(out[0]) == 100 and out[1].frames.tolist() == list(range(60))
+
+
 def test_a_slow_track_that_goes_back_onto_another_tracks_object_turns() -> None:
     """At 1 px per frame a track that reverses changes velocity by 2 px per frame, less than a
     tenth of its box size: still a turn, as it is more than its speed."""

@@ -179,7 +179,7 @@ def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, cand
 
     for a in range(len(out)):
         for b in range(a + 1, len(out)):
-            for start, end in shared_stretches(boxes[a], boxes[b], min_frames, min_iou):
+            for start, end in shared_stretches(boxes[a], boxes[b], min_frames, min_iou, min_inside):
                 menders = {slot: _menders(boxes, slot, (start, end), summary, candidates, min_frames, boxes_of,
                                           (min_iou, min_inside, min_share)) for slot in (a, b)}
                 if bool(menders[a]) == bool(menders[b]):

@@ -151,8 +151,12 @@ def drop_shared_stretches(tracks: Sequence[Track], n_frames: int, min_frames: in
                           min_iou: float = 0.5) -> list[Track]:
     """Tracks without stretches that repeat another track's boxes; tracks left empty are dropped.
 
-    A stretch is shared when two tracks' boxes match (IoU at least ``min_iou``) in every frame
-    of it but up to ``HOLE`` frames at a time (box jitter), for at least ``min_frames`` frames.
+    A stretch is shared when two tracks' boxes match (IoU at least ``min_iou``, or one inside the
+    other: :func:`shared_stretches`) in every frame of it but up to ``HOLE`` frames at a time
+    (box jitter), for at least ``min_frames`` frames. It begins where a track's box is first
+    inside the other's, not where the two first match: an object passing behind another leaves
+    a part of itself in view, and by the time the boxes match its track already moves with the
+    other, so its turn would be missed.
     A track loses it if its motion turns where the stretch begins or where it ends (not at the
     track's own first or last frame): the mean velocity of its box centre over ``window``
     frames after differs from the one over ``window`` frames before by more than the other
@@ -200,11 +204,13 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
     return [t for t in out if len(t)]
 
 
-def shared_stretches(boxes: np.ndarray, other: np.ndarray, min_frames: int, min_iou: float) -> list[tuple[int, int]]:
+def shared_stretches(boxes: np.ndarray, other: np.ndarray, min_frames: int, min_iou: float,
+                     min_inside: float = 0.9) -> list[tuple[int, int]]:
     """First and last frame of each stretch where two tracks' boxes (per frame, NaN where none)
-    match with IoU at least ``min_iou``, holes of up to ``HOLE`` frames bridged, of at least
-    ``min_frames`` frames."""
-    same = box_iou(boxes, other) >= min_iou
+    hold the same object (:func:`same_boxes`: IoU at least ``min_iou``, or one at least
+    ``min_inside`` inside the other, as the part of an object left in view behind another),
+    holes of up to ``HOLE`` frames bridged, of at least ``min_frames`` frames."""
+    same = same_boxes(boxes, other, min_iou, min_inside)
     edges = np.diff(np.concatenate(([0], same.astype(np.int8), [0])))
     runs: list[list[int]] = []
     for begin, stop in zip(np.flatnonzero(edges == 1).tolist(), np.flatnonzero(edges == -1).tolist()):

@@ -5,7 +5,7 @@ from trap_core.clustering.errors import ClusteringError
 from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns, labels_after_merges, lifetime_cut
 from trap_core.clustering.selection import ClusterSummary, select_clusters, summarise, twin_clusters
 from trap_core.clustering.tracks import (Track, box_centres, box_containment, box_iou, box_path, build_track,
-                                        centre_inside, centre_path, core_regions, frame_face_sets, in_rows,
+                                        centre_inside, centre_path, centre_steps, core_regions, frame_face_sets, in_rows,
                                         track_pieces, usual_size, with_frames)
 from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
 
@@ -24,6 +24,7 @@ __all__ = [
     "build_track",
     "centre_inside",
     "centre_path",
+    "centre_steps",
     "cluster_patterns",
     "core_regions",
     "frame_face_sets",

@@ -56,14 +56,18 @@ def track_pieces(frames: np.ndarray, min_gap: int, boxes: np.ndarray | None = No
     box's extent from one box to the next (where the track went over to another object)."""
     cuts = np.diff(frames) > min_gap
     if boxes is not None and len(boxes) > 1:
-        step = np.linalg.norm(np.diff(box_centres(boxes), axis=0), axis=1)
-        cuts |= step > np.maximum(boxes[:-1, 2:4].max(axis=1), boxes[1:, 2:4].max(axis=1))
+        cuts |= centre_steps(boxes) > np.maximum(boxes[:-1, 2:4].max(axis=1), boxes[1:, 2:4].max(axis=1))
     return np.split(np.arange(len(frames)), np.flatnonzero(cuts) + 1)
 
 
 def box_centres(boxes: np.ndarray) -> np.ndarray:
     """Centres of boxes ``(x, y, w, h)`` (last axis), broadcast over the others."""
     return boxes[..., :2] + boxes[..., 2:4] / 2
+
+
+def centre_steps(boxes: np.ndarray) -> np.ndarray:
+    """(N-1,) distance between the centres of each two consecutive boxes (N, 4) of a track."""
+    return np.linalg.norm(np.diff(box_centres(boxes), axis=0), axis=1)
 
 
 def box_path(track: Track, length: int) -> np.ndarray:

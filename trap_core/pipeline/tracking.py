@@ -133,6 +133,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     if robust and (params.size_jump or params.groups):
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=params.groups, patience=params.tau, min_gap=params.tau)
+    motion_window = max(3, params.tau // 2)  # frames over which a track's motion at a point is read
     if robust and params.one_track:
         tracks = gaps_filled([drop_strays(t, max(3, params.tau // 3)) for t in tracks])
         alike = lookalike_tracks(tracks, labels, mined.st_pattern[clustered], occurrences, params.rejoin_similarity)
@@ -143,20 +144,19 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
         def spare_track(cluster: int) -> Track:
             return track_of(cluster, 0)
         tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, spare_track)
-        tracks = drop_shared_stretches(tracks, n_frames, params.tau, max(3, params.tau // 2))
-        tracks = drop_repeated_pieces(tracks, max(3, params.tau // 2))
-        tracks = [end_at_exits(t, width, height, max(3, params.tau // 2)) for t in tracks]
-        tracks = continue_tracks(tracks, summary, spare, n_frames, width, height, max(3, params.tau // 2), params.eps,
+        tracks = drop_shared_stretches(tracks, n_frames, params.tau, motion_window)
+        tracks = drop_repeated_pieces(tracks, motion_window)
+        tracks = [end_at_exits(t, width, height, motion_window) for t in tracks]
+        tracks = continue_tracks(tracks, summary, spare, n_frames, width, height, motion_window, params.eps,
                                  spare_track)
-        tracks = [end_at_exits(t, width, height, max(3, params.tau // 2)) for t in tracks]  # and the continuations'
-        tracks = gaps_filled(join_handovers(tracks, n_frames, max(3, params.tau // 2), params.eps))
+        tracks = [end_at_exits(t, width, height, motion_window) for t in tracks]  # and the continuations'
+        tracks = gaps_filled(join_handovers(tracks, n_frames, motion_window, params.eps))
         if params.size_jump:  # the continuations' boxes were not sized against their tracks yet
             tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                      groups=False, min_gap=params.tau)
         if not params.n_objects:
             tracks = keep_one_size(tracks, params.tau, int(params.min_track_length * n_frames))
     if robust and params.to_border:
-        tracks = [continue_to_border(t, n_frames, width, height, max(3, params.tau // 2), 2 * params.tau)
-                  for t in tracks]
+        tracks = [continue_to_border(t, n_frames, width, height, motion_window, 2 * params.tau) for t in tracks]
     seconds["clustering"] = time.perf_counter() - start
     return TrackingResult(mined, sub_paths, clustered, hierarchy, summary, selected, tracks, all_labels, seconds)

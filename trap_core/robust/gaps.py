@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from trap_core.clustering import Track, box_centres, usual_size, with_frames
+from trap_core.clustering import Track, centre_steps, usual_size, with_frames
 
 
 def fill_gaps(track: Track, max_gap: int, pace: float = 3.0) -> Track:
@@ -24,7 +24,7 @@ def fill_gaps(track: Track, max_gap: int, pace: float = 3.0) -> Track:
     gap = np.diff(frames) - 1
     short = (gap > 0) & (gap <= max_gap)
     if short.any():
-        step = np.linalg.norm(np.diff(box_centres(track.boxes), axis=0), axis=1)
+        step = centre_steps(track.boxes)
         speed = float(np.median(step[gap == 0])) if np.any(gap == 0) else np.inf
         short &= step <= pace * speed * (gap + 1) + 0.5 * usual_size(track)
     if not short.any():

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Benchmark: tracking quality of the defaults on synthetic videos with ground truth.
 
-Twelve sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
+Thirteen sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
 presets, seeds 0-2), the variants looked at while the robust rules were chosen ("tuned"), variants
 never looked at while choosing them ("held-out"), frames larger than the working size ("larger",
 segmented scaled down to ``max_side``), a camera that also turns and zooms ("camera"), objects of
@@ -9,13 +9,14 @@ other shapes ("shapes": tall, round, several shapes at once), a mix of all of th
 which the last three rules were chosen ("recent"), another made after those ("fresh"), one with
 more look-alikes ("newest") on which the three rules after those were checked, one made after
 those ("untouched"), one made after every rule but the usual size from clear frames, which was
-made on it ("latest"), and a last one made after that ("unseen"). Prints, per video, the tracks
+made on it ("latest"), one made after that ("unseen"), and a last one drawn at random after every
+rule ("blind"). Prints, per video, the tracks
 found without being told the number of objects, each object's box precision/recall (%) and
 MOTA / IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90 or
 better and the mean MOTA / IDF1, and that share over all sets run; with ``--pictures DIR``, each
 video's tracks as a contact sheet and a timeline. Graphs are cached (``--cache``), so a second
 run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,unseen] [-p name:=value]``
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,blind] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
@@ -176,10 +177,21 @@ UNSEEN = [  # made after the clear-frame usual size and exit rules, never tuned 
     ("identical, car, 4 objects, noise 1, Felzenszwalb",
      dict(seed=206, identical=True, shape="car", objects=4, noise=1.0), "felzenszwalb"),
 ]
+BLIND = [  # drawn at random after every rule (session 18), tracked as it came; no rule made or checked on it
+    ("distinct, objects 1.2x, turn 10 deg, noise 2, Felzenszwalb",
+     dict(seed=211, object_scale=1.2, rotation=10.0, noise=2.0), "felzenszwalb"),
+    ("distinct, disc, 4 objects, noise 1.5, Felzenszwalb", dict(seed=212, shape="disc", objects=4, noise=1.5),
+     "felzenszwalb"),
+    ("identical, person, 800x600", dict(seed=213, identical=True, shape="person", width=800, height=600), "colour"),
+    ("identical, car, objects 1.2x, 960x540",
+     dict(seed=214, identical=True, shape="car", object_scale=1.2, width=960, height=540), "colour"),
+    ("distinct, car, 800x600", dict(seed=215, shape="car", width=800, height=600), "colour"),
+    ("distinct, disc, 5 objects, 800x600", dict(seed=216, shape="disc", objects=5, width=800, height=600), "colour"),
+]
 FELZENSZWALB_ONLY = ("k", "sigma", "min_size", "threshold", "connectivity")  # no effect on exact-colour regions
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
         "shapes": SHAPES, "recent": RECENT, "fresh": FRESH,
-        "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST, "unseen": UNSEEN}
+        "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST, "unseen": UNSEEN, "blind": BLIND}
 
 
 def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None = None,

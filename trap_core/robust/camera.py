@@ -87,8 +87,10 @@ def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, l
 
     The median over the pattern's observations of its displacement to the first observation
     at least ``lag`` frames later, divided by the frames between (first to last observation
-    for a pattern seen for less than ``lag`` frames). Over a lag of a second, jitter of the
-    barycentres (regions changing shape with noise) does not add up while motion does.
+    for a pattern seen for less than ``lag`` frames). Over a lag of many frames (the tracker
+    takes ``tau``/2 for patterns and ``tau`` for clusters: half a second and a second at 25 Hz),
+    jitter of the barycentres (regions changing shape with noise) does not add up while motion
+    does.
     Computed on whole patterns of about ``chunk`` observations at a time (bounded memory).
     """
     inverse = np.linalg.inv(transforms)

@@ -35,8 +35,8 @@ def _worker(frames: int, chunk: int) -> None:
 
     start = time.perf_counter()
     tracker = ChunkedTracker(params, frames)
-    for index, graph in enumerate(graphs_of(pixels(), params)):
-        tracker.add(graph, int(index * 1e9 / config.fps))
+    for graph in graphs_of(pixels(), params):
+        tracker.add(graph)
     run = tracker.finish()
     seconds = time.perf_counter() - start
     boxes = [{int(f): tuple(b) for f, b in zip(t.frames, t.boxes)} for t in run.tracks]

@@ -207,6 +207,22 @@ def test_run_bag_tracks_and_writes_the_frames_before_a_bad_one(tmp_path: Path) -
     assert summary["frames"] == 40 and summary["counts"]["tracks"] >= 1  # every frame in flight was kept
 
 
+
+def test_the_frame_rate_in_the_stamps_changes_no_track(tmp_path: Path) -> None:
+    """The speed that tells objects from background is per frame (min_speed per tau frames):
+    the same frames stamped at 10 Hz and at 25 Hz give the same tracks. Per second, the slowest
+    object of this video falls under it at 10 Hz."""
+    from trap_core.pipeline import TrapParams, run_bag
+    from trap_core.synthetic import SceneConfig
+    from trap_core.synthetic.scene import render
+    frames = [rendered.rgb for rendered in render(SceneConfig(width=320, height=240, frames=200, seed=5))]
+    tracks = []
+    for fps in (10, 25):
+        write_image_bag(tmp_path / f"bag{fps}", frames, fps=fps)
+        run_bag(tmp_path / f"bag{fps}", tmp_path / f"out{fps}", TrapParams(segmentation="colour"))
+        tracks.append((tmp_path / f"out{fps}" / "tracks.txt").read_text())
+    assert tracks[0] == tracks[1] and tracks[0].count("\n") > 100
+
 def test_corrupt_ros1_header(tmp_path: Path) -> None:
     write_image_bag(tmp_path / "bag.bag", _frames(count=10, height=64, width=64), storage="ros1")
     path = tmp_path / "bag.bag"

@@ -45,7 +45,7 @@ def test_ids_continue_across_chunks_and_boxes_are_final_while_reading(monkeypatc
                  100: [_line(1, 100, 239, 0, 50)],
                  200: [_line(1, 200, 259, 0, 300), _line(2, 200, 259, 0, 50)]}
 
-    def fake_track(graphs, params, fps, miner):
+    def fake_track(graphs, params, miner):
         first = sorted(k for k in per_chunk if k not in seen)[0]
         seen.add(first)
         return _Stub([Track(t.track_id, t.frames - first, t.boxes, t.score, t.cluster) for t in per_chunk[first]])
@@ -55,8 +55,8 @@ def test_ids_continue_across_chunks_and_boxes_are_final_while_reading(monkeypatc
     monkeypatch.setattr(chunks, "PatternMiner", lambda params, n_frames: type("M", (), {"add": lambda s, g: None})())
     tracker = ChunkedTracker(TrapParams(chunk=100, tau=10))
     final = []
-    for frame in range(260):
-        tracker.add(_FRAME, frame)
+    for _ in range(260):
+        tracker.add(_FRAME)
         final.append(tracker.final_frames)
     assert final[138] == 0 and final[139] == 120 and final[239] == 220  # middle of each overlap
     first_pieces = tracker.take_final()
@@ -74,18 +74,18 @@ def test_ids_continue_across_chunks_and_boxes_are_final_while_reading(monkeypatc
 def test_one_chunk_is_the_whole_video_and_chunks_keep_the_objects() -> None:
     params = TrapParams(segmentation="colour", chunk=0)
     graphs, truth = synthetic_graphs(SceneConfig(width=320, height=240, frames=300, seed=2, exits=False), params)
-    whole = track(graphs, params, 25.0)
+    whole = track(graphs, params)
     tracker = ChunkedTracker(params, len(graphs))
-    for index, graph in enumerate(graphs):
-        tracker.add(graph, index * 40_000_000)
+    for graph in graphs:
+        tracker.add(graph)
     run = tracker.finish()
     assert len(run.chunks) == 1 and len(run.tracks) == len(whole.tracks)
     for a, b in zip(run.tracks, whole.tracks):
         np.testing.assert_array_equal(a.frames, b.frames)
         np.testing.assert_allclose(a.boxes, b.boxes)
     chunked = ChunkedTracker(TrapParams(segmentation="colour", chunk=150), len(graphs))
-    for index, graph in enumerate(graphs):
-        chunked.add(graph, index * 40_000_000)
+    for graph in graphs:
+        chunked.add(graph)
     run = chunked.finish()
     assert len(run.chunks) == 2
     assert len(run.tracks) == len(truth)  # every object keeps one id across the chunk border
@@ -101,15 +101,15 @@ def test_chunk_shorter_than_the_overlap_is_refused() -> None:
 @pytest.mark.parametrize("n_frames", [2, 99, 139, 140, 141, 221, 239, 240, 241])
 def test_every_frame_is_final_once_whatever_the_length(monkeypatch: pytest.MonkeyPatch, n_frames: int) -> None:
     """One object standing in every frame of every chunk (chunk 100, overlap 40): one id, each frame once."""
-    def fake_track(graphs, params, fps, miner):
+    def fake_track(graphs, params, miner):
         frames = np.arange(len(graphs))
         return _Stub([Track(1, frames, np.tile([10.0, 50.0, 40.0, 30.0], (frames.size, 1)), np.ones(frames.size), 1)])
 
     monkeypatch.setattr(chunks, "track", fake_track)
     monkeypatch.setattr(chunks, "PatternMiner", lambda params, n_frames: type("M", (), {"add": lambda s, g: None})())
     tracker = ChunkedTracker(TrapParams(chunk=100, tau=10), n_frames)
-    for frame in range(n_frames):
-        tracker.add(_FRAME, frame)
+    for _ in range(n_frames):
+        tracker.add(_FRAME)
     run = tracker.finish()
     assert tracker.final_frames == n_frames and len(run.tracks) == 1
     np.testing.assert_array_equal(run.tracks[0].frames, np.arange(n_frames))
@@ -134,7 +134,7 @@ def test_an_object_away_across_a_chunk_border_comes_back_with_its_id(monkeypatch
     }
     seen: list[int] = []
 
-    def fake_track(graphs, params, fps, miner):
+    def fake_track(graphs, params, miner):
         first = 0 if not seen else 100
         seen.append(first)
         tracks, structures = per_chunk[first]
@@ -143,8 +143,8 @@ def test_an_object_away_across_a_chunk_border_comes_back_with_its_id(monkeypatch
     monkeypatch.setattr(chunks, "track", fake_track)
     monkeypatch.setattr(chunks, "PatternMiner", lambda params, n_frames: type("M", (), {"add": lambda s, g: None})())
     tracker = ChunkedTracker(TrapParams(chunk=100, tau=10))
-    for frame in range(240):
-        tracker.add(_FRAME, frame)
+    for _ in range(240):
+        tracker.add(_FRAME)
     run = tracker.finish()
     frames = {t.track_id: t.frames.tolist() for t in run.tracks}
     assert sorted(frames) == [1, 2, 3]

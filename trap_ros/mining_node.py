@@ -17,7 +17,6 @@ from std_msgs.msg import Header, UInt64
 from vision_msgs.msg import Detection2DArray
 from visualization_msgs.msg import MarkerArray
 
-from trap_core.bagio import stamp_ns
 from trap_core.pipeline import GRAPH_STAGE, ChunkedRun, ChunkedTracker, TrapParams
 from trap_ros.messages import frame_detections, message_graph, track_arrays, trajectory_markers
 from trap_ros.node_main import run_node
@@ -66,7 +65,7 @@ class MiningNode(Node):
             self.headers.append(message.header)
             self.regions += graph.n_nodes
             try:
-                self.tracker.add(graph, stamp_ns(message.header))
+                self.tracker.add(graph)
                 self._publish_final()
             except Exception as error:  # a chunk failed: reported, the run ends with an error
                 self._fail(error)

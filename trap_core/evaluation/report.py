@@ -23,8 +23,8 @@ from trap_core.evaluation.paper_measures import box_precision_recall, cluster_pr
 from trap_core.evaluation.scoring import match_objects, mot_measures  # noqa: E402
 from trap_core.motformat import ground_truth_path, read_mot  # noqa: E402
 from trap_core.outputs import Thumbnails, contact_sheet  # noqa: E402
-from trap_core.pipeline import TrapParams, frame_rate, graphs_of, track  # noqa: E402
-from trap_core.pipeline.bag_run import stamped_frames  # noqa: E402
+from trap_core.pipeline import TrapParams, graphs_of, track  # noqa: E402
+from trap_core.pipeline.bag_run import thumbnailed_frames  # noqa: E402
 from trap_core.progress import Progress  # noqa: E402
 
 # The ablation: the paper's method, then each step of the robust one added in turn (its parameter
@@ -65,12 +65,11 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
                  ) -> dict:
     truth = _truth(gt_path)
     name = bag.name.removesuffix(bag.suffix) if bag.suffix else bag.name
-    stamps: list[int] = []
     with open_image_stream(bag, topic) as stream:
         meter = Progress(stream.count, f"evaluate {name}: graphs")
         thumbnails = Thumbnails(stream.count)
         start = time.perf_counter()
-        graphs = list(graphs_of(stamped_frames(stream, thumbnails, meter, stamps), base))
+        graphs = list(graphs_of(thumbnailed_frames(stream, thumbnails, meter), base))
         graph_seconds = time.perf_counter() - start
         meter.finish()
     n_frames = len(graphs)
@@ -81,7 +80,7 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
         if overrides["method"] == "paper":  # the paper takes the number of objects as given
             params = dataclasses.replace(params, n_objects=len(truth))
         start = time.perf_counter()
-        run = track(graphs, params, frame_rate(stamps))
+        run = track(graphs, params)
         seconds = time.perf_counter() - start
         boxes = [{int(f): tuple(b) for f, b in zip(t.frames, t.boxes)} for t in run.tracks]
         matched = match_objects(boxes, truth)

@@ -5,8 +5,8 @@ from trap_core.pipeline.chunks import ChunkedRun, ChunkedTracker, ChunkSummary
 from trap_core.pipeline.frames_to_graphs import frame_graph, graphs_of, synthetic_graphs
 from trap_core.pipeline.params import GRAPH_STAGE, METHODS, SEGMENTATIONS, ParameterError, TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
-from trap_core.pipeline.tracking import TrackingResult, frame_rate, track
+from trap_core.pipeline.tracking import TrackingResult, track
 
 __all__ = ["GRAPH_STAGE", "METHODS", "BagRun", "ChunkSummary", "ChunkedRun", "ChunkedTracker", "SEGMENTATIONS", "ParameterError", "PatternMiner", "TrackingResult",
-           "TrapParams", "frame_graph", "frame_rate", "graphs_of", "run_bag", "synthetic_graphs",
+           "TrapParams", "frame_graph", "graphs_of", "run_bag", "synthetic_graphs",
            "track"]

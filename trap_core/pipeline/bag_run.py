@@ -30,10 +30,9 @@ class BagRun:
     interrupted: bool = False
 
 
-def stamped_frames(stream, thumbnails: Thumbnails, meter: Progress, stamps: list[int]) -> Iterator[np.ndarray]:
-    """The frames' pixels, keeping their stamps and the contact sheet's thumbnails on the way."""
+def thumbnailed_frames(stream, thumbnails: Thumbnails, meter: Progress) -> Iterator[np.ndarray]:
+    """The frames' pixels, keeping the contact sheet's thumbnails on the way."""
     for frame in stream:
-        stamps.append(frame.stamp_ns)
         thumbnails(frame.rgb)
         meter.advance()
         yield frame.rgb
@@ -48,7 +47,6 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    stamps: list[int] = []
     regions = 0
     interrupted = False
     bad_frame: BagError | None = None
@@ -58,8 +56,8 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
         tracker = ChunkedTracker(params, stream.count)
         start = time.perf_counter()
         try:
-            for graph in graphs_of(stamped_frames(stream, thumbnails, meter, stamps), params):
-                tracker.add(graph, stamps[tracker.frames])
+            for graph in graphs_of(thumbnailed_frames(stream, thumbnails, meter), params):
+                tracker.add(graph)
                 regions += graph.n_nodes
         except KeyboardInterrupt:
             interrupted = True

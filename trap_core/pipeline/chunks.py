@@ -26,7 +26,7 @@ import numpy as np
 from trap_core.clustering import Track, box_iou, in_rows
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
-from trap_core.pipeline.tracking import TrackingResult, frame_rate, track
+from trap_core.pipeline.tracking import TrackingResult, track
 from trap_core.rag import PlaneGraph
 from trap_core.robust import reaches_border
 
@@ -88,7 +88,6 @@ class ChunkedTracker:
         self.n_frames = n_frames
         self.run = ChunkedRun()
         self._graphs: list[PlaneGraph] = []
-        self._stamps: list[int] = []
         self._start = 0                              # global frame of self._graphs[0]
         self._miner = PatternMiner(params, self._span(0))
         self._next_miner: PatternMiner | None = None  # fed the overlap, for the next chunk
@@ -104,10 +103,9 @@ class ChunkedTracker:
         """Frames added so far."""
         return self._start + len(self._graphs)
 
-    def add(self, graph: PlaneGraph, stamp_ns: int = 0) -> None:
-        """The next frame's graph (and header stamp: the frame rate); tracks a chunk when one is complete."""
+    def add(self, graph: PlaneGraph) -> None:
+        """The next frame's graph; tracks a chunk when one is complete."""
         self._graphs.append(graph)
-        self._stamps.append(stamp_ns)
         self._miner.add(graph)
         if self.length and len(self._graphs) > self.params.chunk:
             if self._next_miner is None:
@@ -117,7 +115,6 @@ class ChunkedTracker:
                 self._track_chunk(final=False)
                 self._start += self.params.chunk
                 self._graphs = self._graphs[self.params.chunk:]
-                self._stamps = self._stamps[self.params.chunk:]
                 self._miner, self._next_miner = self._next_miner, None
 
     def finish(self) -> ChunkedRun:
@@ -146,7 +143,7 @@ class ChunkedTracker:
     def _track_chunk(self, final: bool) -> None:
         """Track the current chunk; its boxes are final up to the middle of the overlap with the
         next chunk (to the end of the stream if ``final``)."""
-        result = track(self._graphs, self.params, frame_rate(self._stamps), self._miner)
+        result = track(self._graphs, self.params, self._miner)
         tracks = [dataclasses.replace(t, frames=t.frames + self._start) for t in result.tracks]
         structures = [_structures(result, t.cluster) for t in result.tracks]
         continued = {}

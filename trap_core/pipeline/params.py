@@ -64,9 +64,10 @@ class TrapParams:
                                   "and colour) keeps its label, and one that appears is labelled under the first "
                                   "frame's light (gain measured on continuing regions), so light changes do not "
                                   "flip labels")
-    min_speed: float = _p(0.03, "robust: image widths per second, relative to the camera and over tau/2 frames, "
-                                "below which patterns (and, over tau frames, clusters) are background (0.03 = 0.75 "
-                                "px/frame at 640 px, 25 Hz); 0 = off")
+    min_speed: float = _p(0.0012, "robust: image widths per frame, relative to the camera and read over tau/2 "
+                                  "frames, below which patterns (and, over tau frames, clusters) are background "
+                                  "(0.0012 = 0.77 px/frame at 640 px; per frame, as the barycentres' jitter it "
+                                  "stands above, at any frame rate); 0 = off")
     one_object: bool = _p(True, "robust: a cluster of the cut whose patterns lie on two objects at once (further "
                                 "apart than half their sizes on average, or in tau frames) is split down the "
                                 "hierarchy")

@@ -37,15 +37,7 @@ class TrackingResult:
     seconds: dict[str, float] = field(default_factory=dict)
 
 
-def frame_rate(stamps_ns: Sequence[int], default: float = 25.0) -> float:
-    """Frames per second from header stamps (``default`` when they do not advance)."""
-    if len(stamps_ns) < 2 or stamps_ns[-1] <= stamps_ns[0]:
-        return default
-    return (len(stamps_ns) - 1) * 1e9 / (stamps_ns[-1] - stamps_ns[0])
-
-
-def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
-          miner: PatternMiner | None = None) -> TrackingResult:
+def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner | None = None) -> TrackingResult:
     """Run TRAP's stages 3-7 on the plane graphs of a whole video (frame i = graphs[i]).
 
     ``miner``: a :class:`PatternMiner` that was given every graph as it was made (mining
@@ -53,8 +45,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
 
     ``method="paper"``: every spatio-temporal pattern is clustered. ``"robust"`` (ours): one path
     per object when linking occurrences, only patterns that move relative to the camera's
-    motion are clustered, and fragments of one object are rejoined across gaps. ``fps`` turns
-    ``min_speed`` (image widths per second) into pixels per frame.
+    motion are clustered, and fragments of one object are rejoined across gaps.
     """
     seconds: dict[str, float] = {}
     n_frames = len(graphs)
@@ -72,7 +63,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, fps: float = 25.0,
     clustered = np.arange(mined.n_st)
     transforms = (camera_transforms(observed, n_frames)
                   if robust and (params.min_speed > 0 or params.grow or params.still_regions) else None)
-    still_below = params.min_speed * width / fps  # px per frame
+    still_below = params.min_speed * width  # px per frame
     if robust and params.min_speed > 0:
         speed = world_speed(observed, transforms, mined.n_st, max(1, params.tau // 2))
         clustered = np.flatnonzero(speed >= still_below)

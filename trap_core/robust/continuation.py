@@ -51,9 +51,9 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     out = list(tracks)
     taken: set[int] = set()
     for slot in range(len(out)):
-        frames = out[slot].frames
-        ends = np.flatnonzero(np.diff(np.append(frames, n_frames)) > window)
-        for end, resume in zip(frames[ends].tolist(), np.append(frames, n_frames)[ends + 1].tolist()):
+        bounds = np.append(out[slot].frames, n_frames)  # the track's frames, then the video's end
+        ends = np.flatnonzero(np.diff(bounds) > window)
+        for end, resume in zip(bounds[ends].tolist(), bounds[ends + 1].tolist()):
             found = _continuation(out, slot, (end, resume), summary, candidates, taken, (width, height),
                                   window, reach, build, min_iou)
             if found is not None:

@@ -147,6 +147,35 @@ def test_rejoin_never_joins_a_fragment_that_goes_along_with_another_object() -> 
     assert labels[0] == labels[2] != labels[1]
 
 
+def test_clusters_go_along_where_they_share_most_frames_close_by_read_in_any_chunks(monkeypatch) -> None:
+    """Pairs of clusters are compared a chunk of pairs at a time (a textured scene has millions):
+    the answer is the same in chunks of one pair."""
+    import trap_core.robust.rejoin as rejoin
+    from trap_core.clustering import summarise
+    line = lambda start, n, y: np.column_stack([np.arange(start, start + n) * 2.0, np.full(n, y)])  # noqa: E731
+    paths = _paths([(0, line(0, 200, 10)), (0, line(0, 200, 14)),     # one object's two parts, 4 px apart
+                    (0, line(0, 200, 300)), (20, line(20, 180, 306)),  # another's, 6 px apart from frame 20
+                    (0, line(0, 200, 100)), (150, line(150, 50, 12))])  # a third; a part seen too briefly
+    summary = summarise(np.arange(6), paths, np.ones(6), 200)
+    covered = summary.covered.astype(float)
+    expected = np.zeros((6, 6), dtype=bool)
+    expected[0, 1] = expected[1, 0] = expected[2, 3] = expected[3, 2] = True
+    whole = rejoin._going_along(summary, covered @ covered.T, 100, 10.0)
+    monkeypatch.setattr(rejoin, "PAIR_CELLS", 200)  # one pair at a time
+    np.testing.assert_array_equal(whole, expected)
+    np.testing.assert_array_equal(rejoin._going_along(summary, covered @ covered.T, 100, 10.0), expected)
+
+
+def test_structure_similarity_is_the_share_of_the_lesser_cluster_on_structures_both_have() -> None:
+    from trap_core.robust.rejoin import structure_similarity
+    labels, st_pattern = np.array([0, 0, 0, 1, 1, 2]), np.array([4, 4, 7, 7, 9, 3])
+    weights = np.array([1.0, 2.0, 1.0, 3.0, 1.0, 5.0])
+    similarity = structure_similarity(labels, st_pattern, weights)
+    # cluster 0: 3 on structure 4, 1 on 7; cluster 1: 3 on 7, 1 on 9; cluster 2: 5 on 3
+    np.testing.assert_allclose(similarity, [[1.0, 0.75, 0.0], [0.75, 1.0, 0.0], [0.0, 0.0, 1.0]])
+    np.testing.assert_allclose(structure_similarity(labels, st_pattern)[0, 1], 0.5)  # every pattern counts one
+
+
 def test_rejoin_continues_a_fragment_right_where_another_ended_whatever_its_structures() -> None:
     """Noise changed every structure the object shows at frame 30; the new fragment starts where
     the old one's motion puts it. One 30 px off, or starting 10 frames later, is not adjacent."""

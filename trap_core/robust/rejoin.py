@@ -24,6 +24,7 @@ for most of its frames) that are mostly seen with that group elsewhere: it is on
 from __future__ import annotations
 
 import numpy as np
+from scipy import sparse
 
 from trap_core.clustering import ClusterSummary, Trajectories, summarise
 from trap_core.mining import MiningResult
@@ -36,6 +37,7 @@ from trap_core.robust.camera import map_points
 # a look-alike passing by).
 ALONG_FRAMES = 4
 ALONG_SHARE = 0.8
+PAIR_CELLS = 1 << 21  # pairs x frames compared at once by _going_along
 
 
 def structure_similarity(labels: np.ndarray, st_pattern: np.ndarray, weights: np.ndarray | float = 1.0
@@ -43,10 +45,13 @@ def structure_similarity(labels: np.ndarray, st_pattern: np.ndarray, weights: np
     """How much two clusters (labels 0..C-1) are made of the same structures: for the one that
     has less in the other, the share of its weight (per pattern ``weights``: its occurrences, say)
     on plane patterns the other also has. (C, C), symmetric, 1 on the diagonal."""
-    weighted = np.zeros((int(labels.max()) + 1 if labels.size else 0, int(st_pattern.max()) + 1 if st_pattern.size
-                         else 0))
-    np.add.at(weighted, (labels, st_pattern), weights)
-    share = (weighted @ (weighted > 0).T) / np.maximum(weighted.sum(axis=1), 1e-12)[:, None]
+    shape = (int(labels.max()) + 1 if labels.size else 0, int(st_pattern.max()) + 1 if st_pattern.size else 0)
+    per_pattern = np.broadcast_to(np.asarray(weights, dtype=float), labels.shape)
+    weighted = sparse.csr_matrix((per_pattern, (labels, st_pattern)), shape=shape)  # repeated cells add up
+    present = weighted.copy()
+    present.data = (present.data > 0).astype(float)
+    totals = np.asarray(weighted.sum(axis=1)).ravel()
+    share = (weighted @ present.T).toarray() / np.maximum(totals, 1e-12)[:, None]
     return np.maximum(share, share.T)
 
 
@@ -64,7 +69,7 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     ``weights``: per pattern, how much of its fragment it is (its occurrences); by default
     every pattern counts one. ``transforms``: the camera's motion (``transforms[t]`` maps
     frame-0 coordinates to frame ``t``); with it, a fragment may also continue where the
-    earlier one's motion in the world puts it (:func:`_prediction_error`). A fragment that
+    earlier one's motion in the world puts it (:func:`_prediction_errors`). A fragment that
     starts at most ``adjacent_gap`` frames after another ends, at most ``adjacent_reach`` px
     from where its motion puts it, is a candidate whatever its structures: an object does not
     jump, but a noisy one can change every structure it shows from one frame to the next.
@@ -90,7 +95,7 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
         leaves = _flag_near(labels, paths.end, summary.paths.end, at_border[1], max_overlap)
         candidate &= leaves[:, None] == enters[None, :]
     earlier, later = np.nonzero(candidate)
-    costs = np.array([_prediction_error(summary.paths, a, b, transforms) for a, b in zip(earlier, later)])
+    costs = _prediction_errors(summary.paths, earlier, later, transforms)
     keep = (similarity[earlier, later] >= min_similarity) | (costs <= adjacent_reach)
     earlier, later, costs = earlier[keep], later[keep], costs[keep]
     group = np.arange(n_clusters)
@@ -116,10 +121,21 @@ def _going_along(summary: ClusterSummary, overlap: np.ndarray, min_frames: int, 
     those frames (patterns on different parts of an object are a part's size apart)."""
     along = np.zeros(overlap.shape, dtype=bool)
     shorter = np.minimum.outer(summary.length, summary.length)
-    for a, b in zip(*np.nonzero(np.triu((overlap >= min_frames) & (overlap >= ALONG_SHARE * shorter), k=1))):
-        both = np.flatnonzero(summary.covered[a] & summary.covered[b])
-        distance = np.linalg.norm(summary.paths.at(a, both) - summary.paths.at(b, both), axis=1)
-        along[a, b] = along[b, a] = float(np.mean(distance)) <= reach
+    first, second = np.nonzero(np.triu((overlap >= min_frames) & (overlap >= ALONG_SHARE * shorter), k=1))
+    if first.size == 0:
+        return along
+    paths = summary.paths
+    involved, slot = np.unique(np.r_[first, second], return_inverse=True)
+    first_row, second_row = slot[:first.size], slot[first.size:]
+    position = np.zeros((involved.size, summary.covered.shape[1], 2))  # each involved cluster's path, 0 elsewhere
+    for row, cluster in enumerate(involved.tolist()):
+        position[row, paths.start[cluster]:paths.end[cluster] + 1] = paths.of(cluster)
+    step = max(1, PAIR_CELLS // summary.covered.shape[1])  # pairs at a time: memory stays bounded on long chunks
+    for lo in range(0, first.size, step):
+        a, b = first[lo:lo + step], second[lo:lo + step]
+        both = summary.covered[a] & summary.covered[b]
+        distance = np.linalg.norm(position[first_row[lo:lo + step]] - position[second_row[lo:lo + step]], axis=2)
+        along[a, b] = along[b, a] = (distance * both).sum(axis=1) / both.sum(axis=1) <= reach
     return along
 
 
@@ -159,32 +175,44 @@ def _mean_position(summary: ClusterSummary, members: np.ndarray, frames: np.ndar
     return total / count[:, None]
 
 
-def _prediction_error(paths: Trajectories, earlier: int, later: int, transforms: np.ndarray | None = None) -> float:
-    """Distance between where ``later`` starts and where ``earlier``'s last motion would put it.
+def _prediction_errors(paths: Trajectories, earlier: np.ndarray, later: np.ndarray,
+                       transforms: np.ndarray | None = None) -> np.ndarray:
+    """Per pair (``earlier[i]``, ``later[i]``): distance between where ``later`` starts and where
+    ``earlier``'s last motion would put it.
 
     Two motions are extrapolated across the gap: steady in the view, and, with the camera's
     ``transforms``, steady in the world (mapped back into the view with the camera's motion).
     Under a panning camera the two part by the camera's motion times the gap. Which one holds
     depends on the shot: a camera that follows the object keeps it steady in the view, a
     camera that sweeps past it leaves it steady in the world; the error is the smaller one.
+    Each earlier cluster's motions are read once, however many pairs it is in (a textured
+    scene has millions of pairs).
     """
-    before = paths.of(earlier)
-    tail = before[-min(len(before), 10):]
-    gap = paths.start[later] - paths.end[earlier]
-    arrival = paths.of(later)[0]
-    error = float(np.linalg.norm(arrival - _extrapolated(tail, gap)))
+    if earlier.size == 0:
+        return np.zeros(0)
+    ends, slot = np.unique(earlier, return_inverse=True)
+    last_in_view, velocity_in_view = np.empty((ends.size, 2)), np.empty((ends.size, 2))
+    last_in_world, velocity_in_world = np.empty((ends.size, 2)), np.empty((ends.size, 2))
+    for row, cluster in enumerate(ends.tolist()):
+        before = paths.of(cluster)
+        tail = before[-min(len(before), 10):]
+        last_in_view[row], velocity_in_view[row] = _steady(tail)
+        if transforms is not None:
+            frames = np.arange(paths.end[cluster] - len(tail) + 1, paths.end[cluster] + 1)
+            last_in_world[row], velocity_in_world[row] = _steady(map_points(np.linalg.inv(transforms[frames]), tail))
+    gap = (paths.start[later] - paths.end[earlier])[:, None]
+    arrival = paths.points[paths.offsets[later]]
+    error = np.linalg.norm(arrival - (last_in_view[slot] + velocity_in_view[slot] * gap), axis=1)
     if transforms is None:
         return error
-    frames = np.arange(paths.end[earlier] - len(tail) + 1, paths.end[earlier] + 1)
-    in_world = _extrapolated(map_points(np.linalg.inv(transforms[frames]), tail), gap)
-    seen = map_points(transforms[paths.start[later]], in_world[None])[0]
-    return min(error, float(np.linalg.norm(arrival - seen)))
+    seen = map_points(transforms[paths.start[later]], last_in_world[slot] + velocity_in_world[slot] * gap)
+    return np.minimum(error, np.linalg.norm(arrival - seen, axis=1))
 
 
-def _extrapolated(tail: np.ndarray, gap: int) -> np.ndarray:
-    """Where a path whose last positions are ``tail`` (one per frame) is ``gap`` frames after
-    the last, at the mean velocity over ``tail``."""
-    return tail[-1] + (tail[-1] - tail[0]) / max(len(tail) - 1, 1) * gap
+def _steady(tail: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Last position and mean velocity (per frame) of a path whose last positions are ``tail``
+    (one per frame): it is ``last + velocity * gap`` ``gap`` frames later, moving steadily."""
+    return tail[-1], (tail[-1] - tail[0]) / max(len(tail) - 1, 1)
 
 
 def _flag_near(labels: np.ndarray, pattern_edge: np.ndarray, cluster_edge: np.ndarray, flags: np.ndarray,

@@ -28,3 +28,14 @@ def small_bag(tmp_path_factory: pytest.TempPathFactory, small_scene: SceneConfig
 def venv_bin() -> Path:
     """Folder of the console scripts installed beside the running interpreter."""
     return Path(sys.executable).parent
+
+
+@pytest.fixture(scope="session")
+def textured_frames() -> list:
+    """Six frames of a camera panning down over grass (160x120): at the paper's k, about 170
+    regions each (a textured scene)."""
+    import cv2
+    import numpy as np
+    import skimage.data
+    grass = np.repeat(skimage.data.grass()[..., None], 3, axis=2)
+    return [cv2.resize(grass[4 * t:4 * t + 240, :320], (160, 120), interpolation=cv2.INTER_AREA) for t in range(6)]

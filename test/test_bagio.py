@@ -297,3 +297,16 @@ def test_bags_are_never_overwritten(tmp_path: Path) -> None:
     with pytest.raises(BagError, match="exists already"):
         write_image_bag(tmp_path / "bag", _frames(count=1))
     shutil.rmtree(tmp_path / "bag")
+
+
+def test_run_bag_reports_the_k_fitted_to_a_textured_first_frame(tmp_path: Path, capsys, textured_frames: list) -> None:
+    import json
+
+    from trap_core.pipeline import TrapParams, fitted_to_regions, run_bag
+    frames = textured_frames
+    write_image_bag(tmp_path / "bag", frames)
+    params = TrapParams(max_regions=60)
+    run_bag(tmp_path / "bag", tmp_path / "out", params)
+    used = json.loads((tmp_path / "out" / "summary.json").read_text())["parameters"]
+    assert used["k"] == fitted_to_regions(frames[0], params).k > params.k and used["max_regions"] == 60
+    assert f"k raised from 7 to {used['k']:g}" in capsys.readouterr().err

@@ -255,3 +255,36 @@ def test_pixel_distances_are_pixels_of_the_working_size() -> None:
     big = params.in_frame_pixels(1920, 1080)  # segmented 3x smaller: objects 3x larger in its pixels
     assert (big.eps, big.separation) == (40.0, 90.0)
     assert TrapParams(max_side=0).in_frame_pixels(1920, 1080).separation == 40.0
+
+
+def test_a_textured_frame_gets_the_least_k_that_cuts_it_into_at_most_max_regions(textured_frames: list) -> None:
+    import dataclasses
+
+    from trap_core.pipeline import TrapParams, fitted_to_regions, frame_graph
+    rgb = textured_frames[0]
+    params = TrapParams(max_regions=50)
+    assert frame_graph(rgb, params).n_nodes > 3 * params.max_regions
+    fitted = fitted_to_regions(rgb, params)
+    assert fitted.k > params.k and dataclasses.replace(fitted, k=params.k) == params  # only k changes
+    assert frame_graph(rgb, fitted).n_nodes <= params.max_regions
+    assert frame_graph(rgb, dataclasses.replace(fitted, k=0.9 * fitted.k)).n_nodes > params.max_regions  # least
+    assert fitted_to_regions(rgb, fitted) == fitted  # fitting twice changes nothing
+    for kept in (TrapParams(max_regions=0), TrapParams(max_regions=100_000), TrapParams(segmentation="colour")):
+        assert fitted_to_regions(rgb, kept) is kept
+    with pytest.raises(ValueError, match="max_regions"):
+        TrapParams(max_regions=3)
+
+
+def test_every_frame_of_a_stream_is_cut_with_the_k_fitted_to_its_first(textured_frames: list) -> None:
+    from trap_core.pipeline import TrapParams, fitted_to_regions, frame_graph, graphs_of
+    textured, plain = textured_frames[0], np.full((120, 160, 3), 90, np.uint8)
+    params = TrapParams(max_regions=50, threads=2)
+    reported: list[TrapParams] = []
+    frames = [textured, plain, textured, textured]
+    graphs = list(graphs_of(frames, params, reported.append))
+    fitted = fitted_to_regions(textured, params)
+    assert reported == [fitted]
+    assert [g.n_nodes for g in graphs] == [frame_graph(f, fitted).n_nodes for f in frames]
+    reported.clear()
+    list(graphs_of([plain, textured], params, reported.append))  # fitted on a plain first frame: k as given
+    assert reported == []

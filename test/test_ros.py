@@ -255,6 +255,21 @@ def test_process_bag_keeps_what_it_read_before_a_bad_frame_and_fails(venv_bin: P
         assert {c.topic: c.msgcount for c in reader.connections}["/trap/detections"] == 40
 
 
+def test_process_bag_segments_a_textured_bag_with_the_k_fitted_to_its_first_frame(venv_bin: Path, tmp_path: Path,
+                                                                                  textured_frames: list) -> None:
+    """The segmentation node fits k on the first frame (max_regions); the summary reports it."""
+    from trap_core.bagio import write_image_bag
+    from trap_core.pipeline import fitted_to_regions
+    frames = textured_frames
+    write_image_bag(tmp_path / "bag", frames)
+    done = _process_bag(venv_bin / "process_bag", tmp_path / "bag", tmp_path / "out", "--ros-args", "-p",
+                        "max_regions:=60")
+    assert done.returncode == 0, done.stderr[-2000:]
+    used = json.loads((tmp_path / "out" / "summary.json").read_text())["parameters"]
+    assert used["k"] == fitted_to_regions(frames[0], TrapParams(max_regions=60)).k > 7
+    assert f"k raised from 7 to {used['k']:g}" in done.stderr + done.stdout
+
+
 def test_process_bag_with_nothing_to_track_writes_every_output(venv_bin: Path, tmp_path: Path) -> None:
     """Frames too small for any pattern to move: 0 tracks is a result, not an error."""
     bag, _ = write_synthetic(SceneConfig(width=96, height=72, frames=120), tmp_path / "tiny")

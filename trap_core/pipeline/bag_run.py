@@ -3,6 +3,7 @@ timeline.png)."""
 from __future__ import annotations
 
 import json
+import sys
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -13,7 +14,7 @@ import numpy as np
 from trap_core.bagio import BagError, open_image_stream
 from trap_core.outputs import Thumbnails, contact_sheet, track_timeline, write_tracks_mot
 from trap_core.pipeline.chunks import ChunkedRun, ChunkedTracker
-from trap_core.pipeline.frames_to_graphs import graphs_of
+from trap_core.pipeline.frames_to_graphs import fitted_message, graphs_of
 from trap_core.pipeline.params import TrapParams
 from trap_core.progress import Progress
 
@@ -50,13 +51,18 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
     regions = 0
     interrupted = False
     bad_frame: BagError | None = None
+    fitted: list[TrapParams] = []  # the segmentation's parameters, where fitted to the first frame
+
+    def note_fitted(used: TrapParams) -> None:
+        fitted.append(used)
+        print(fitted_message(params, used), file=sys.stderr)
     with open_image_stream(bag, topic) as stream:
         meter = Progress(stream.count, f"segmenting {stream.topic}")
         thumbnails = Thumbnails(stream.count)
         tracker = ChunkedTracker(params, stream.count)
         start = time.perf_counter()
         try:
-            for graph in graphs_of(thumbnailed_frames(stream, thumbnails, meter), params):
+            for graph in graphs_of(thumbnailed_frames(stream, thumbnails, meter), params, note_fitted):
                 tracker.add(graph)
                 regions += graph.n_nodes
         except KeyboardInterrupt:
@@ -67,6 +73,7 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
         elapsed = time.perf_counter() - start
         chosen_topic = stream.topic
     frames = tracker.frames
+    params = fitted[0] if fitted else params  # the summary reports the k used
     tracking = tracker.finish() if frames >= 2 else None
     seconds = tracking.seconds if tracking else {}
     seconds["read_segment_graph"] = elapsed - tracking.seconds_while_reading() if tracking else elapsed

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections import deque
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import Future, ThreadPoolExecutor
 
 import cv2
@@ -18,6 +18,8 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, build_plane_graph
 from trap_core.segmentation import colour_components, felzenszwalb
 from trap_core.synthetic import SceneConfig, render
+
+MAX_K = 1e4  # Felzenszwalb's k is not raised beyond this (a frame of one colour never has fewer regions)
 
 
 def frame_graph(rgb: np.ndarray, params: TrapParams) -> PlaneGraph:
@@ -30,18 +32,63 @@ def frame_graph(rgb: np.ndarray, params: TrapParams) -> PlaneGraph:
     graph's geometry is then given back in the frame's own pixels.
     """
     height, width = rgb.shape[:2]
-    small = rgb
-    if params.max_side and max(height, width) > params.max_side:
-        factor = params.max_side / max(height, width)
-        size = (max(1, round(width * factor)), max(1, round(height * factor)))
-        small = cv2.resize(rgb, size, interpolation=cv2.INTER_NEAREST)
-    if params.segmentation == "colour":
-        labels, n = colour_components(small)
-    else:
-        labels, n = felzenszwalb(small, k=params.k, sigma=params.sigma, min_size=params.min_size,
-                                 threshold=params.threshold, connectivity=params.connectivity)
+    small = _working_size(rgb, params)
+    labels, n = _regions(small, params)
     graph = build_plane_graph(labels, n, small, params.colour_bins, params.contact_tolerance)
     return graph if small is rgb else _in_frame_pixels(graph, width / small.shape[1], height / small.shape[0])
+
+
+def fitted_to_regions(rgb: np.ndarray, params: TrapParams) -> TrapParams:
+    """``params`` with Felzenszwalb's ``k`` raised, if need be, until the frame ``rgb`` has at most
+    ``params.max_regions`` regions (at the working size); unchanged for exact-colour regions.
+
+    TRAP's graphs are made for a few hundred regions a frame (the paper's videos have ~240,
+    TRAP_SPEC section 9). Textured footage (grass, gravel, foliage) cut at the paper's ``k``
+    gives thousands of small regions that flicker from frame to frame: every stage after
+    segmentation then takes minutes instead of seconds, and flickering structures chained
+    from frame to frame pass for moving ones. One ``k`` serves the whole video, chosen on its
+    first frame, so that regions stay comparable from frame to frame: the smallest that meets
+    the limit, within 2 % (bisection on a log scale).
+    """
+    if params.segmentation != "felzenszwalb" or not params.max_regions:
+        return params
+    small = _working_size(rgb, params)
+
+    def fits(k: float) -> bool:
+        return _regions(small, dataclasses.replace(params, k=k))[1] <= params.max_regions
+    if fits(params.k):
+        return params
+    low, high = max(params.k, 1e-3), max(2 * params.k, 1.0)
+    while not fits(high) and high < MAX_K:
+        low, high = high, 2 * high
+    while high > 1.02 * low:
+        middle = float(np.sqrt(low * high))
+        low, high = (low, middle) if fits(middle) else (middle, high)
+    return dataclasses.replace(params, k=round(high, 3))
+
+
+def fitted_message(given: TrapParams, used: TrapParams) -> str:
+    """One line for the user: how :func:`fitted_to_regions` changed the segmentation."""
+    return (f"segmentation: k raised from {given.k:g} to {used.k:g}: the first frame had more than "
+            f"{given.max_regions} regions (max_regions)")
+
+
+def _working_size(rgb: np.ndarray, params: TrapParams) -> np.ndarray:
+    """The frame at the size it is segmented: scaled down (nearest pixels) to ``params.max_side``."""
+    height, width = rgb.shape[:2]
+    if not params.max_side or max(height, width) <= params.max_side:
+        return rgb
+    factor = params.max_side / max(height, width)
+    size = (max(1, round(width * factor)), max(1, round(height * factor)))
+    return cv2.resize(rgb, size, interpolation=cv2.INTER_NEAREST)
+
+
+def _regions(small: np.ndarray, params: TrapParams) -> tuple[np.ndarray, int]:
+    """Region label of each pixel of ``small`` (the frame at its working size), and their count."""
+    if params.segmentation == "colour":
+        return colour_components(small)
+    return felzenszwalb(small, k=params.k, sigma=params.sigma, min_size=params.min_size,
+                        threshold=params.threshold, connectivity=params.connectivity)
 
 
 def _in_frame_pixels(graph: PlaneGraph, scale_x: float, scale_y: float) -> PlaneGraph:
@@ -57,13 +104,17 @@ def _in_frame_pixels(graph: PlaneGraph, scale_x: float, scale_y: float) -> Plane
         he_length=np.maximum(1, np.rint(graph.he_length * np.sqrt(scale_x * scale_y))).astype(np.int32))
 
 
-def graphs_of(frames: Iterable[np.ndarray], params: TrapParams) -> Iterator[PlaneGraph]:
-    """Plane graph of each frame, in order. If ``frames`` fails (a bad frame in a bag), the
-    graphs of the frames before it are still given, then the error is raised."""
+def graphs_of(frames: Iterable[np.ndarray], params: TrapParams,
+              fitted: Callable[[TrapParams], None] | None = None) -> Iterator[PlaneGraph]:
+    """Plane graph of each frame, in order, with the parameters :func:`fitted_to_regions` gives
+    on the first frame (passed to ``fitted`` where they differ from ``params``: the run reports
+    the ``k`` it used). If ``frames`` fails (a bad frame in a bag), the graphs of the frames
+    before it are still given, then the error is raised."""
     failure: Exception | None = None
     with ThreadPoolExecutor(params.threads, thread_name_prefix="trap-graph") as pool:
         pending: deque[Future] = deque()
         source = iter(frames)
+        first = True
         while True:
             try:
                 rgb = next(source)
@@ -72,6 +123,11 @@ def graphs_of(frames: Iterable[np.ndarray], params: TrapParams) -> Iterator[Plan
             except Exception as error:  # raised once the frames in flight are made
                 failure = error
                 break
+            if first:
+                first, used = False, fitted_to_regions(rgb, params)
+                if fitted is not None and used != params:
+                    fitted(used)
+                params = used
             pending.append(pool.submit(frame_graph, rgb, params))
             if len(pending) >= 2 * params.threads:
                 yield pending.popleft().result()

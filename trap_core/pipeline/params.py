@@ -12,8 +12,8 @@ from trap_core.segmentation import THRESHOLD_MODES
 SEGMENTATIONS = ("felzenszwalb", "colour")
 METHODS = ("paper", "robust")
 # Which node needs which parameters (the segmentation node: stages 1-2; the mining node: 3-7).
-GRAPH_STAGE = ("segmentation", "k", "sigma", "min_size", "threshold", "connectivity", "max_side", "colour_bins",
-               "contact_tolerance", "threads")
+GRAPH_STAGE = ("segmentation", "k", "max_regions", "sigma", "min_size", "threshold", "connectivity", "max_side",
+               "colour_bins", "contact_tolerance", "threads")
 
 
 class ParameterError(ValueError):
@@ -30,6 +30,10 @@ class TrapParams:
 
     segmentation: str = _p("felzenszwalb", "felzenszwalb, or colour: exact-colour regions (synthetic videos)")
     k: float = _p(7.0, "segmentation threshold constant (constant mode: colour-distance units)")
+    max_regions: int = _p(480, "Felzenszwalb: k is raised (for the whole video, from its first frame) until a frame "
+                                "has at most this many regions at the working size: textured footage cut into "
+                                "thousands of flickering regions is slow and noisy (ours; 480 = twice the paper's "
+                                "videos); 0 = k as given")
     sigma: float = _p(0.8, "Gaussian smoothing before segmentation")
     min_size: int = _p(20, "regions smaller than this (pixels) are merged")
     threshold: str = _p("constant", "constant (paper: tau = k) or size (original: tau = k/|C|)")
@@ -120,6 +124,7 @@ class TrapParams:
             (self.method in METHODS, f"method must be one of {METHODS}"),
             (self.linkage in LINKAGES, f"linkage must be one of {LINKAGES}"),
             (self.k >= 0 and self.sigma >= 0 and self.min_size >= 0, "k, sigma and min_size must be >= 0"),
+            (self.max_regions == 0 or self.max_regions >= 16, "max_regions must be 0 (off) or at least 16"),
             (self.connectivity in (4, 8), "connectivity must be 4 or 8"),
             (1 <= self.colour_bins <= 256, "colour_bins must be within 1..256"),
             (self.max_side == 0 or self.max_side >= 32, "max_side must be 0 (full size) or at least 32"),

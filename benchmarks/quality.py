@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Benchmark: tracking quality of the defaults on synthetic videos with ground truth.
 
-Thirteen sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
+Fourteen sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
 presets, seeds 0-2), the variants looked at while the robust rules were chosen ("tuned"), variants
 never looked at while choosing them ("held-out"), frames larger than the working size ("larger",
 segmented scaled down to ``max_side``), a camera that also turns and zooms ("camera"), objects of
@@ -9,14 +9,14 @@ other shapes ("shapes": tall, round, several shapes at once), a mix of all of th
 which the last three rules were chosen ("recent"), another made after those ("fresh"), one with
 more look-alikes ("newest") on which the three rules after those were checked, one made after
 those ("untouched"), one made after every rule but the usual size from clear frames, which was
-made on it ("latest"), one made after that ("unseen"), and a last one drawn at random after every
-rule ("blind"). Prints, per video, the tracks
+made on it ("latest"), one made after that ("unseen"), one drawn at random after every
+rule ("blind"), and other scenes: photographs as backgrounds ("photos"). Prints, per video, the tracks
 found without being told the number of objects, each object's box precision/recall (%) and
 MOTA / IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90 or
 better and the mean MOTA / IDF1, and that share over all sets run; with ``--pictures DIR``, each
 video's tracks as a contact sheet and a timeline. Graphs are cached (``--cache``), so a second
 run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,blind] [-p name:=value]``
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,photos] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
@@ -188,10 +188,28 @@ BLIND = [  # drawn at random after every rule (session 18), tracked as it came; 
     ("distinct, car, 800x600", dict(seed=215, shape="car", width=800, height=600), "colour"),
     ("distinct, disc, 5 objects, 800x600", dict(seed=216, shape="disc", objects=5, width=800, height=600), "colour"),
 ]
-FELZENSZWALB_ONLY = ("k", "sigma", "min_size", "threshold", "connectivity")  # no effect on exact-colour regions
+PHOTOS = [  # other scenes: the camera pans over a photograph (session 19), tracked as they came
+    ("distinct, astronaut", dict(seed=5, background="astronaut"), "felzenszwalb"),
+    ("identical, coffee", dict(seed=11, identical=True, background="coffee"), "felzenszwalb"),
+    ("distinct, rocket, noise 2", dict(seed=12, background="rocket", noise=2.0), "felzenszwalb"),
+    ("identical, 4 objects, retina", dict(seed=13, identical=True, objects=4, background="retina"), "felzenszwalb"),
+    ("distinct, hubble", dict(seed=14, background="hubble_deep_field"), "felzenszwalb"),
+    ("identical, disc, chelsea", dict(seed=15, identical=True, shape="disc", background="chelsea"), "felzenszwalb"),
+    ("distinct, 4 objects, immunohistochemistry", dict(seed=16, objects=4, background="immunohistochemistry"),
+     "felzenszwalb"),
+    ("distinct, grass, noise 1", dict(seed=17, background="grass", noise=1.0), "felzenszwalb"),
+    ("identical, person, brick", dict(seed=18, identical=True, shape="person", background="brick"), "felzenszwalb"),
+    ("distinct, colorwheel", dict(seed=21, background="colorwheel"), "felzenszwalb"),
+    ("distinct, chelsea", dict(seed=22, background="chelsea"), "felzenszwalb"),
+    ("distinct, retina, noise 1", dict(seed=23, background="retina", noise=1.0), "felzenszwalb"),
+    ("identical, 4 objects, astronaut", dict(seed=24, identical=True, objects=4, background="astronaut"),
+     "felzenszwalb"),
+]
+FELZENSZWALB_ONLY = ("k", "max_regions", "sigma", "min_size", "threshold", "connectivity")  # no effect on exact-colour regions
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
         "shapes": SHAPES, "recent": RECENT, "fresh": FRESH,
-        "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST, "unseen": UNSEEN, "blind": BLIND}
+        "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST, "unseen": UNSEEN, "blind": BLIND,
+        "photos": PHOTOS}
 
 
 def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None = None,

@@ -153,3 +153,26 @@ def _object_colours(frame) -> set[tuple]:
             x, y, w, h = box
             colours |= {tuple(c) for c in frame.rgb[y:y + h, x:x + w].reshape(-1, 3)}
     return colours
+
+
+def test_a_photograph_background_is_panned_over_with_the_objects_drawn_on_it() -> None:
+    """Other scenes: the camera pans over a scikit-image photograph; outside the objects' boxes
+    the frame is the photograph's view, inside them the objects are drawn."""
+    photo = SceneConfig(width=160, height=120, frames=12, seed=4, background="chelsea")
+    world = build_world(photo)
+    assert world.rgb.shape[:2] == (120 + 2 * 36, 160 + 2 * 48)  # the view and a margin of 0.3 of it
+    assert len(np.unique(world.rgb.reshape(-1, 3), axis=0)) > 1000  # a photograph, not a dozen colours
+    for frame in render(photo):
+        x, y = world.camera[frame.index]
+        view = world.rgb[y:y + 120, x:x + 160]
+        outside = np.ones((120, 160), dtype=bool)
+        for box in frame.boxes:
+            if box:
+                inside = (slice(box[1], box[1] + box[3]), slice(box[0], box[0] + box[2]))
+                assert not np.array_equal(frame.rgb[inside], view[inside])
+                outside[inside] = False
+        assert np.array_equal(frame.rgb[outside], view[outside])
+    assert frame.boxes.count(None) < len(frame.boxes)
+    with pytest.raises(ValueError, match="background"):
+        SceneConfig(background="nowhere")
+    assert build_parser().parse_args(["bag", "--background", "grass"]).background == "grass"

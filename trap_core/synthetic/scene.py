@@ -37,6 +37,11 @@ SHAPES = {
 SHAPE_SIZES = {"car": (0.1, 0.09), "person": (0.065, 0.2), "disc": (0.08, 0.107)}  # share of width, height
 COLOUR_SLOTS = 4
 MIXED = "mixed"  # object i has shape i of SHAPES, cycling
+CELLS = "cells"  # the background: coloured Voronoi cells with islands, as the paper's Anim videos
+# Or a photograph bundled with scikit-image (skimage.data, no download), stretched over the world
+# the camera pans: other scenes, smooth (chelsea, colorwheel, retina) to textured (grass, gravel).
+PHOTOS = ("astronaut", "brick", "camera", "chelsea", "coffee", "colorwheel", "grass", "gravel", "hubble_deep_field",
+          "immunohistochemistry", "retina", "rocket")
 
 
 @dataclass(frozen=True)
@@ -59,6 +64,7 @@ class SceneConfig:
     rotation: float = 0.0  # degrees: the camera also turns (yaw), up to this either way
     zoom: float = 0.0      # the camera also zooms, up to this share in and out
     shape: str = "car"     # one of SHAPES, or "mixed"
+    background: str = CELLS  # "cells", or one of PHOTOS
 
 
     def __post_init__(self) -> None:
@@ -70,6 +76,8 @@ class SceneConfig:
             raise ValueError("noise >= 0 and 0 <= illumination < 1 are required")
         if not 0 <= self.rotation <= 45 or not 0 <= self.zoom < 0.5:
             raise ValueError("0 <= rotation <= 45 degrees and 0 <= zoom < 0.5 are required")
+        if self.background != CELLS and self.background not in PHOTOS:
+            raise ValueError(f"background {self.background!r} is not one of {', '.join([CELLS, *PHOTOS])}")
         if self.shape != MIXED and self.shape not in SHAPES:
             raise ValueError(f"shape {self.shape!r} is not one of {', '.join([*SHAPES, MIXED])}")
 
@@ -163,6 +171,14 @@ def _background(rng: np.random.Generator, cfg: SceneConfig, world_w: int, world_
     return rgb
 
 
+def _photo(name: str, world_w: int, world_h: int) -> np.ndarray:
+    """The scikit-image photograph ``name`` (grey ones as RGB) stretched to the world's size."""
+    from skimage import data  # only for these backgrounds
+    rgb = getattr(data, name)()
+    rgb = np.repeat(rgb[..., None], 3, axis=2) if rgb.ndim == 2 else rgb[..., :3]
+    return cv2.resize(np.ascontiguousarray(rgb, dtype=np.uint8), (world_w, world_h), interpolation=cv2.INTER_CUBIC)
+
+
 def _object_paths(rng: np.random.Generator, cfg: SceneConfig) -> np.ndarray:
     """Piecewise-linear image-space paths (top-left corners) with abrupt turns; every third leg
     heads for the centre (so paths cross); the last object leaves the view for 3-4 s every ~6-9 s."""
@@ -217,7 +233,8 @@ def build_world(cfg: SceneConfig) -> _World:
         colours = object_palette.reshape(max(cfg.objects, 1), COLOUR_SLOTS, 3)[: cfg.objects]
     margin = (int(0.3 * cfg.width), int(0.3 * cfg.height))
     world_w, world_h = cfg.width + 2 * margin[0], cfg.height + 2 * margin[1]
-    background = _background(rng, cfg, world_w, world_h, palette_bg)
+    background = (_background(rng, cfg, world_w, world_h, palette_bg) if cfg.background == CELLS
+                  else _photo(cfg.background, world_w, world_h))
     camera = _camera_path(rng, cfg, margin)
     paths = _object_paths(rng, cfg)
     stamps = [_stamp(SHAPES[cfg.shape_of(obj)], cfg.size_of(obj)) for obj in range(cfg.objects)]

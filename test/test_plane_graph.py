@@ -288,3 +288,19 @@ def test_every_frame_of_a_stream_is_cut_with_the_k_fitted_to_its_first(textured_
     reported.clear()
     list(graphs_of([plain, textured], params, reported.append))  # fitted on a plain first frame: k as given
     assert reported == []
+
+
+def test_a_first_frame_of_few_felzenszwalb_regions_gets_a_warning(textured_frames: list) -> None:
+    from trap_core.pipeline import TrapParams, coarse_warning, frame_graph
+    smooth = np.zeros((120, 160, 3), np.uint8)
+    smooth[:, :, 0] = np.linspace(0, 255, 160, dtype=np.uint8)  # a ramp cut into a few bands
+    smooth[40:80, 60:100] = (20, 200, 20)
+    params = TrapParams()
+    graph = frame_graph(smooth, params)
+    assert graph.n_nodes < 40
+    assert coarse_warning(graph, params) == (f"segmentation: the first frame has only {graph.n_nodes} regions at k 7: "
+                                             "objects may share giant regions with the background and go untracked; "
+                                             "a smaller k (-p k:=3.5) cuts finer")
+    assert coarse_warning(frame_graph(smooth, TrapParams(segmentation="colour")), TrapParams(segmentation="colour")) \
+        is None
+    assert coarse_warning(frame_graph(textured_frames[0], params), params) is None

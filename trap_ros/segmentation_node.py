@@ -17,7 +17,7 @@ from rclpy.node import Node
 from sensor_msgs.msg import CompressedImage, Image
 from visualization_msgs.msg import MarkerArray
 
-from trap_core.pipeline import GRAPH_STAGE, fitted_message, fitted_to_regions, frame_graph
+from trap_core.pipeline import GRAPH_STAGE, coarse_warning, fitted_message, fitted_to_regions, frame_graph
 from trap_ros.messages import graph_markers, graph_message, image_rgb
 from trap_ros.node_main import run_node
 from trap_ros.parameters import declare_trap_parameters, trap_parameters
@@ -81,6 +81,9 @@ class SegmentationNode(Node):
         while self.pending and (block or self.pending[0][0].done()) and self._downstream_ready(block):
             future, header = self.pending.popleft()
             graph = future.result()
+            warning = coarse_warning(graph, self.params) if self.published == 0 else None
+            if warning:
+                self.get_logger().warning(warning)
             self.graph_pub.publish(graph_message(graph, header))
             if self.markers:
                 self.marker_pub.publish(graph_markers(header, graph))

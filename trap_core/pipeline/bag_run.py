@@ -14,7 +14,7 @@ import numpy as np
 from trap_core.bagio import BagError, open_image_stream
 from trap_core.outputs import Thumbnails, contact_sheet, track_timeline, write_tracks_mot
 from trap_core.pipeline.chunks import ChunkedRun, ChunkedTracker
-from trap_core.pipeline.frames_to_graphs import fitted_message, graphs_of
+from trap_core.pipeline.frames_to_graphs import coarse_warning, fitted_message, graphs_of
 from trap_core.pipeline.params import TrapParams
 from trap_core.progress import Progress
 
@@ -65,6 +65,9 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
             for graph in graphs_of(thumbnailed_frames(stream, thumbnails, meter), params, note_fitted):
                 tracker.add(graph)
                 regions += graph.n_nodes
+                warning = coarse_warning(graph, fitted[0] if fitted else params) if tracker.frames == 1 else None
+                if warning:
+                    print(warning, file=sys.stderr)
         except KeyboardInterrupt:
             interrupted = True
         except BagError as error:

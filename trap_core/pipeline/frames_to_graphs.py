@@ -19,6 +19,7 @@ from trap_core.rag import PlaneGraph, build_plane_graph
 from trap_core.segmentation import colour_components, felzenszwalb
 from trap_core.synthetic import SceneConfig, render
 
+FEW_REGIONS = 40  # a first frame with fewer Felzenszwalb regions than this gets a warning (coarse_warning)
 MAX_K = 1e4  # Felzenszwalb's k is not raised beyond this (a frame of one colour never has fewer regions)
 
 
@@ -71,6 +72,21 @@ def fitted_message(given: TrapParams, used: TrapParams) -> str:
     """One line for the user: how :func:`fitted_to_regions` changed the segmentation."""
     return (f"segmentation: k raised from {given.k:g} to {used.k:g}: the first frame had more than "
             f"{given.max_regions} regions (max_regions)")
+
+
+def coarse_warning(graph: PlaneGraph, params: TrapParams) -> str | None:
+    """One line for the user where the first frame's Felzenszwalb regions are too few to track
+    by (fewer than ``FEW_REGIONS``), else None.
+
+    A smooth scene (a face, a sky, a plain wall) cut at ``k`` 7 can give a few giant regions: every
+    pattern an object shows then holds one of them, cut by the view's edge, and reads as
+    background (README, Natural backgrounds). Nothing is changed: a finer cut of a noisy scene
+    passes flickering regions for motion, so only the user can choose it.
+    """
+    if params.segmentation != "felzenszwalb" or graph.n_nodes >= FEW_REGIONS:
+        return None
+    return (f"segmentation: the first frame has only {graph.n_nodes} regions at k {params.k:g}: objects may share "
+            f"giant regions with the background and go untracked; a smaller k (-p k:={params.k / 2:g}) cuts finer")
 
 
 def _working_size(rgb: np.ndarray, params: TrapParams) -> np.ndarray:

@@ -20,7 +20,7 @@ from trap_core.segmentation import colour_components, felzenszwalb
 from trap_core.synthetic import SceneConfig, render
 
 FEW_REGIONS = 40  # a first frame with fewer Felzenszwalb regions than this gets a warning (coarse_warning)
-MAX_K = 1e4  # Felzenszwalb's k is not raised beyond this (a frame of one colour never has fewer regions)
+MAX_K = 1e4  # fitting never raises Felzenszwalb's k beyond this: every colour step of a frame merges long before
 
 
 def frame_graph(rgb: np.ndarray, params: TrapParams) -> PlaneGraph:

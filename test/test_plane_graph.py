@@ -304,3 +304,5 @@ def test_a_first_frame_of_few_felzenszwalb_regions_gets_a_warning(textured_frame
     assert coarse_warning(frame_graph(smooth, TrapParams(segmentation="colour")), TrapParams(segmentation="colour")) \
         is None
     assert coarse_warning(frame_graph(textured_frames[0], params), params) is None
+    plain = frame_graph(np.full((120, 160, 3), 90, np.uint8), params)
+    assert "the first frame has only 1 region at k 7:" in coarse_warning(plain, params)

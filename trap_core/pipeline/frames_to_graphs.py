@@ -85,7 +85,8 @@ def coarse_warning(graph: PlaneGraph, params: TrapParams) -> str | None:
     """
     if params.segmentation != "felzenszwalb" or graph.n_nodes >= FEW_REGIONS:
         return None
-    return (f"segmentation: the first frame has only {graph.n_nodes} regions at k {params.k:g}: objects may share "
+    regions = f"{graph.n_nodes} region" + ("s" if graph.n_nodes != 1 else "")
+    return (f"segmentation: the first frame has only {regions} at k {params.k:g}: objects may share "
             f"giant regions with the background and go untracked; a smaller k (-p k:={params.k / 2:g}) cuts finer")
 
 

@@ -176,3 +176,17 @@ def test_a_photograph_background_is_panned_over_with_the_objects_drawn_on_it() -
     with pytest.raises(ValueError, match="background"):
         SceneConfig(background="nowhere")
     assert build_parser().parse_args(["bag", "--background", "grass"]).background == "grass"
+
+
+def test_a_road_background_is_asphalt_with_lane_markings_and_verges() -> None:
+    """One region as large as the view under every object (cars seen from a drone); the same
+    camera and objects as over a photograph for the same seed."""
+    road = SceneConfig(width=160, height=120, frames=6, seed=4, background="road")
+    world = build_world(road)
+    height = world.rgb.shape[0]
+    asphalt = world.rgb[height // 2 - 3, 10]
+    assert abs(int(asphalt[0]) - 96) <= 8 and tuple(world.rgb[1, 5]) == (70, 140, 60)  # asphalt, verge
+    assert (world.rgb[height // 8 + 1, :, 0] >= 200).mean() > 0.3  # a dashed marking
+    photo = build_world(SceneConfig(width=160, height=120, frames=6, seed=4, background="chelsea"))
+    assert np.array_equal(world.camera, photo.camera) and np.array_equal(world.paths, photo.paths)
+    assert build_parser().parse_args(["bag", "--background", "road"]).background == "road"

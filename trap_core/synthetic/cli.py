@@ -8,7 +8,7 @@ from pathlib import Path
 
 from trap_core.bagio import STORAGES, SUPPORTED_ENCODINGS
 from trap_core.cli import run_main
-from trap_core.synthetic.scene import CELLS, MIXED, PHOTOS, PRESETS, SHAPES, SceneConfig
+from trap_core.synthetic.scene import CELLS, MIXED, PHOTOS, PRESETS, ROAD, SHAPES, SceneConfig
 from trap_core.synthetic.video import write_synthetic
 
 
@@ -26,9 +26,9 @@ def build_parser() -> argparse.ArgumentParser:
         parser.add_argument(f"--{name.replace('_', '-')}", dest=name, type=float, default=getattr(defaults, name))
     parser.add_argument("--shape", choices=[*SHAPES, MIXED], default=defaults.shape,
                         help="object shape; mixed: object i has the i-th shape, cycling")
-    parser.add_argument("--background", choices=[CELLS, *PHOTOS], default=defaults.background,
-                        help="cells: coloured Voronoi cells (the paper's Anim videos); or a scikit-image photograph "
-                             "the camera pans over (other scenes)")
+    parser.add_argument("--background", choices=[CELLS, ROAD, *PHOTOS], default=defaults.background,
+                        help="cells: coloured Voronoi cells (the paper's Anim videos); road: asphalt with lane "
+                             "markings; or a scikit-image photograph the camera pans over (other scenes)")
     parser.add_argument("--no-exits", action="store_true", help="no object leaves the field of view")
     parser.add_argument("--encoding", choices=SUPPORTED_ENCODINGS, default="rgb8")
     parser.add_argument("--compressed", choices=("jpeg", "png"), help="write sensor_msgs/CompressedImage")

@@ -38,6 +38,7 @@ SHAPE_SIZES = {"car": (0.1, 0.09), "person": (0.065, 0.2), "disc": (0.08, 0.107)
 COLOUR_SLOTS = 4
 MIXED = "mixed"  # object i has shape i of SHAPES, cycling
 CELLS = "cells"  # the background: coloured Voronoi cells with islands, as the paper's Anim videos
+ROAD = "road"  # or grey asphalt with dashed lane markings between two verges, seen from above
 # Or a photograph bundled with scikit-image (skimage.data, no download), stretched over the world
 # the camera pans: other scenes, smooth (chelsea, colorwheel, retina) to textured (grass, gravel).
 PHOTOS = ("astronaut", "brick", "camera", "chelsea", "coffee", "colorwheel", "grass", "gravel", "hubble_deep_field",
@@ -64,7 +65,7 @@ class SceneConfig:
     rotation: float = 0.0  # degrees: the camera also turns (yaw), up to this either way
     zoom: float = 0.0      # the camera also zooms, up to this share in and out
     shape: str = "car"     # one of SHAPES, or "mixed"
-    background: str = CELLS  # "cells", or one of PHOTOS
+    background: str = CELLS  # "cells", "road", or one of PHOTOS
 
 
     def __post_init__(self) -> None:
@@ -76,8 +77,8 @@ class SceneConfig:
             raise ValueError("noise >= 0 and 0 <= illumination < 1 are required")
         if not 0 <= self.rotation <= 45 or not 0 <= self.zoom < 0.5:
             raise ValueError("0 <= rotation <= 45 degrees and 0 <= zoom < 0.5 are required")
-        if self.background != CELLS and self.background not in PHOTOS:
-            raise ValueError(f"background {self.background!r} is not one of {', '.join([CELLS, *PHOTOS])}")
+        if self.background not in (CELLS, ROAD, *PHOTOS):
+            raise ValueError(f"background {self.background!r} is not one of {', '.join([CELLS, ROAD, *PHOTOS])}")
         if self.shape != MIXED and self.shape not in SHAPES:
             raise ValueError(f"shape {self.shape!r} is not one of {', '.join([*SHAPES, MIXED])}")
 
@@ -171,6 +172,23 @@ def _background(rng: np.random.Generator, cfg: SceneConfig, world_w: int, world_
     return rgb
 
 
+def _road(rng: np.random.Generator, cfg: SceneConfig, world_w: int, world_h: int) -> np.ndarray:
+    """Grey asphalt with a faint grain, dashed white lane markings every quarter of the world's
+    height and green verges along its top and bottom: one region as large as the view under
+    every object, as for cars seen from a drone. Its own generator: the camera and the objects
+    move as over the photographs for the same seed."""
+    scale = cfg.width / 640
+    rgb = np.full((world_h, world_w, 3), (96, 96, 100), dtype=np.float32)
+    rgb = np.clip(np.rint(rgb + rng.normal(0, 2, rgb.shape)), 0, 255).astype(np.uint8)
+    dash, line = max(4, round(40 * scale)), max(2, round(4 * scale))
+    for y in range(world_h // 8, world_h, world_h // 4):
+        for x in range(0, world_w, 2 * dash):
+            rgb[y:y + line, x:x + dash] = 235
+    verge = world_h // 20
+    rgb[:verge], rgb[world_h - verge:] = (70, 140, 60), (70, 140, 60)
+    return cv2.GaussianBlur(rgb, (3, 3), 0)
+
+
 def _photo(name: str, world_w: int, world_h: int) -> np.ndarray:
     """The scikit-image photograph ``name`` (grey ones as RGB) stretched to the world's size."""
     from skimage import data  # only for these backgrounds
@@ -233,8 +251,12 @@ def build_world(cfg: SceneConfig) -> _World:
         colours = object_palette.reshape(max(cfg.objects, 1), COLOUR_SLOTS, 3)[: cfg.objects]
     margin = (int(0.3 * cfg.width), int(0.3 * cfg.height))
     world_w, world_h = cfg.width + 2 * margin[0], cfg.height + 2 * margin[1]
-    background = (_background(rng, cfg, world_w, world_h, palette_bg) if cfg.background == CELLS
-                  else _photo(cfg.background, world_w, world_h))
+    if cfg.background == CELLS:
+        background = _background(rng, cfg, world_w, world_h, palette_bg)
+    elif cfg.background == ROAD:
+        background = _road(np.random.default_rng(cfg.seed + 2), cfg, world_w, world_h)
+    else:
+        background = _photo(cfg.background, world_w, world_h)
     camera = _camera_path(rng, cfg, margin)
     paths = _object_paths(rng, cfg)
     stamps = [_stamp(SHAPES[cfg.shape_of(obj)], cfg.size_of(obj)) for obj in range(cfg.objects)]

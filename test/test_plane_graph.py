@@ -279,30 +279,34 @@ def test_every_frame_of_a_stream_is_cut_with_the_k_fitted_to_its_first(textured_
     from trap_core.pipeline import TrapParams, fitted_to_regions, frame_graph, graphs_of
     textured, plain = textured_frames[0], np.full((120, 160, 3), 90, np.uint8)
     params = TrapParams(max_regions=50, threads=2)
-    reported: list[TrapParams] = []
+    reported: list[tuple[TrapParams, list[str]]] = []
     frames = [textured, plain, textured, textured]
-    graphs = list(graphs_of(frames, params, reported.append))
+    graphs = list(graphs_of(frames, params, lambda used, notes: reported.append((used, notes))))
     fitted = fitted_to_regions(textured, params)
-    assert reported == [fitted]
+    assert reported == [(fitted, [f"segmentation: k raised from 7 to {fitted.k:g}: the first frame had more than 50 "
+                                  "regions (max_regions)"])]
     assert [g.n_nodes for g in graphs] == [frame_graph(f, fitted).n_nodes for f in frames]
     reported.clear()
-    list(graphs_of([plain, textured], params, reported.append))  # fitted on a plain first frame: k as given
-    assert reported == []
+    list(graphs_of([plain, textured], params, lambda used, notes: reported.append((used, notes))))
+    assert len(reported) == 1 and reported[0][0] == params  # fitted on a plain first frame: k as given
+    assert reported[0][1][0].startswith("segmentation: the first frame has only 1 region")  # and the user is told
+    reported.clear()
+    list(graphs_of([textured, plain], TrapParams(threads=2), lambda used, notes: reported.append((used, notes))))
+    assert reported == []  # within max_regions and not too few: nothing to tell
 
 
 def test_a_first_frame_of_few_felzenszwalb_regions_gets_a_warning(textured_frames: list) -> None:
-    from trap_core.pipeline import TrapParams, coarse_warning, frame_graph
+    from trap_core.pipeline import TrapParams, first_frame_setup, frame_graph
     smooth = np.zeros((120, 160, 3), np.uint8)
     smooth[:, :, 0] = np.linspace(0, 255, 160, dtype=np.uint8)  # a ramp cut into a few bands
     smooth[40:80, 60:100] = (20, 200, 20)
     params = TrapParams()
     graph = frame_graph(smooth, params)
     assert graph.n_nodes < 40
-    assert coarse_warning(graph, params) == (f"segmentation: the first frame has only {graph.n_nodes} regions at k 7: "
-                                             "objects may share giant regions with the background and go untracked; "
-                                             "a smaller k (-p k:=3.5) cuts finer")
-    assert coarse_warning(frame_graph(smooth, TrapParams(segmentation="colour")), TrapParams(segmentation="colour")) \
-        is None
-    assert coarse_warning(frame_graph(textured_frames[0], params), params) is None
-    plain = frame_graph(np.full((120, 160, 3), 90, np.uint8), params)
-    assert "the first frame has only 1 region at k 7:" in coarse_warning(plain, params)
+    assert first_frame_setup(smooth, params) == (params, [
+        f"segmentation: the first frame has only {graph.n_nodes} regions at k 7: objects may share giant regions "
+        "with the background and go untracked; a smaller k (-p k:=3.5) cuts finer"])
+    assert first_frame_setup(smooth, TrapParams(segmentation="colour")) == (TrapParams(segmentation="colour"), [])
+    assert first_frame_setup(textured_frames[0], params) == (params, [])
+    plain = np.full((120, 160, 3), 90, np.uint8)
+    assert "the first frame has only 1 region at k 7:" in first_frame_setup(plain, params)[1][0]

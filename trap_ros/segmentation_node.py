@@ -17,7 +17,7 @@ from rclpy.node import Node
 from sensor_msgs.msg import CompressedImage, Image
 from visualization_msgs.msg import MarkerArray
 
-from trap_core.pipeline import GRAPH_STAGE, coarse_warning, fitted_message, fitted_to_regions, frame_graph
+from trap_core.pipeline import GRAPH_STAGE, first_frame_setup, frame_graph
 from trap_ros.messages import graph_markers, graph_message, image_rgb
 from trap_ros.node_main import run_node
 from trap_ros.parameters import declare_trap_parameters, trap_parameters
@@ -41,7 +41,7 @@ class SegmentationNode(Node):
         self.lock = threading.Lock()
         self.published = 0
         self.errors = 0
-        self.fitted = False  # whether the first frame fitted the segmentation (fitted_to_regions)
+        self.fitted = False  # whether the first frame set the segmentation up (first_frame_setup)
         self.create_subscription(Image, "image", self._on_image, PIPELINE)
         self.create_timer(0.02, self.publish_done)
 
@@ -55,10 +55,9 @@ class SegmentationNode(Node):
         with self.lock:
             if not self.fitted:  # one segmentation scale for the whole video, from its first frame
                 self.fitted = True
-                used = fitted_to_regions(rgb, self.params)
-                if used != self.params:
-                    self.get_logger().info(fitted_message(self.params, used))
-                    self.params = used
+                self.params, notes = first_frame_setup(rgb, self.params)
+                for note in notes:
+                    self.get_logger().warning(note)
             self.pending.append((self.pool.submit(frame_graph, rgb, self.params), message.header))
             self._publish_ready(block=len(self.pending) > 2 * self.params.threads)
 
@@ -81,9 +80,6 @@ class SegmentationNode(Node):
         while self.pending and (block or self.pending[0][0].done()) and self._downstream_ready(block):
             future, header = self.pending.popleft()
             graph = future.result()
-            warning = coarse_warning(graph, self.params) if self.published == 0 else None
-            if warning:
-                self.get_logger().warning(warning)
             self.graph_pub.publish(graph_message(graph, header))
             if self.markers:
                 self.marker_pub.publish(graph_markers(header, graph))

@@ -23,7 +23,7 @@ from trap_core.evaluation.paper_measures import box_precision_recall, cluster_pr
 from trap_core.evaluation.scoring import match_objects, mot_measures  # noqa: E402
 from trap_core.motformat import ground_truth_path, read_mot  # noqa: E402
 from trap_core.outputs import Thumbnails, contact_sheet  # noqa: E402
-from trap_core.pipeline import TrapParams, fitted_message, graphs_of, track  # noqa: E402
+from trap_core.pipeline import TrapParams, graphs_of, track  # noqa: E402
 from trap_core.pipeline.bag_run import thumbnailed_frames  # noqa: E402
 from trap_core.progress import Progress  # noqa: E402
 
@@ -70,7 +70,7 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
         thumbnails = Thumbnails(stream.count)
         start = time.perf_counter()
         graphs = list(graphs_of(thumbnailed_frames(stream, thumbnails, meter), base,
-                                lambda used: print(fitted_message(base, used), file=sys.stderr)))
+                                lambda used, notes: print("\n".join(notes), file=sys.stderr)))
         graph_seconds = time.perf_counter() - start
         meter.finish()
     n_frames = len(graphs)

@@ -14,7 +14,7 @@ import numpy as np
 from trap_core.bagio import BagError, open_image_stream
 from trap_core.outputs import Thumbnails, contact_sheet, track_timeline, write_tracks_mot
 from trap_core.pipeline.chunks import ChunkedRun, ChunkedTracker
-from trap_core.pipeline.frames_to_graphs import coarse_warning, fitted_message, graphs_of
+from trap_core.pipeline.frames_to_graphs import graphs_of
 from trap_core.pipeline.params import TrapParams
 from trap_core.progress import Progress
 
@@ -51,23 +51,20 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
     regions = 0
     interrupted = False
     bad_frame: BagError | None = None
-    fitted: list[TrapParams] = []  # the segmentation's parameters, where fitted to the first frame
+    fitted: list[TrapParams] = []  # the segmentation's parameters, fitted to the first frame
 
-    def note_fitted(used: TrapParams) -> None:
+    def tell(used: TrapParams, notes: list[str]) -> None:
         fitted.append(used)
-        print(fitted_message(params, used), file=sys.stderr)
+        print("\n".join(notes), file=sys.stderr)
     with open_image_stream(bag, topic) as stream:
         meter = Progress(stream.count, f"segmenting {stream.topic}")
         thumbnails = Thumbnails(stream.count)
         tracker = ChunkedTracker(params, stream.count)
         start = time.perf_counter()
         try:
-            for graph in graphs_of(thumbnailed_frames(stream, thumbnails, meter), params, note_fitted):
+            for graph in graphs_of(thumbnailed_frames(stream, thumbnails, meter), params, tell):
                 tracker.add(graph)
                 regions += graph.n_nodes
-                warning = coarse_warning(graph, fitted[0] if fitted else params) if tracker.frames == 1 else None
-                if warning:
-                    print(warning, file=sys.stderr)
         except KeyboardInterrupt:
             interrupted = True
         except BagError as error:

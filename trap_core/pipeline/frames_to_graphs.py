@@ -19,7 +19,7 @@ from trap_core.rag import PlaneGraph, build_plane_graph
 from trap_core.segmentation import colour_components, felzenszwalb
 from trap_core.synthetic import SceneConfig, render
 
-FEW_REGIONS = 40  # a first frame with fewer Felzenszwalb regions than this gets a warning (coarse_warning)
+FEW_REGIONS = 40  # a first frame with fewer Felzenszwalb regions than this gets a warning (first_frame_setup)
 MAX_K = 1e4  # fitting never raises Felzenszwalb's k beyond this: every colour step of a frame merges long before
 
 
@@ -51,43 +51,56 @@ def fitted_to_regions(rgb: np.ndarray, params: TrapParams) -> TrapParams:
     first frame, so that regions stay comparable from frame to frame: the smallest that meets
     the limit, within 2 % (bisection on a log scale).
     """
-    if params.segmentation != "felzenszwalb" or not params.max_regions:
-        return params
+    return _fitted(rgb, params)[0]
+
+
+def first_frame_setup(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, list[str]]:
+    """The segmentation parameters of a whole video, from its first frame ``rgb``
+    (:func:`fitted_to_regions`), and the lines to tell the user about them: that ``k`` was
+    raised, and that the first frame has fewer than ``FEW_REGIONS`` Felzenszwalb regions.
+
+    A smooth scene (a face, a sky, a plain wall) cut at ``k`` 7 can give a few giant regions: every
+    pattern an object shows then holds one of them, cut by the view's edge, and reads as
+    background (README, Natural backgrounds). Nothing is changed for it: a finer cut of a noisy
+    scene passes flickering regions for motion, so only the user can choose it.
+    """
+    used, count = _fitted(rgb, params)
+    notes = []
+    if used != params:
+        notes.append(f"segmentation: k raised from {params.k:g} to {used.k:g}: the first frame had more than "
+                     f"{params.max_regions} regions (max_regions)")
+    if count is not None and count < FEW_REGIONS:
+        regions = f"{count} region" + ("s" if count != 1 else "")
+        notes.append(f"segmentation: the first frame has only {regions} at k {used.k:g}: objects may share giant "
+                     f"regions with the background and go untracked; a smaller k (-p k:={used.k / 2:g}) cuts finer")
+    return used, notes
+
+
+def _fitted(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, int | None]:
+    """:func:`fitted_to_regions`, and the frame's count of Felzenszwalb regions with the
+    parameters it gives (None for exact-colour regions); each ``k`` is tried once."""
+    if params.segmentation != "felzenszwalb":
+        return params, None
     small = _working_size(rgb, params)
+    counts: dict[float, int] = {}
+
+    def count(k: float) -> int:
+        if k not in counts:
+            counts[k] = _regions(small, dataclasses.replace(params, k=k))[1]
+        return counts[k]
 
     def fits(k: float) -> bool:
-        return _regions(small, dataclasses.replace(params, k=k))[1] <= params.max_regions
-    if fits(params.k):
-        return params
+        return count(k) <= params.max_regions
+    if not params.max_regions or fits(params.k):
+        return params, count(params.k)
     low, high = max(params.k, 1e-3), max(2 * params.k, 1.0)
     while not fits(high) and high < MAX_K:
         low, high = high, 2 * high
     while high > 1.02 * low:
         middle = float(np.sqrt(low * high))
         low, high = (low, middle) if fits(middle) else (middle, high)
-    return dataclasses.replace(params, k=round(high, 3))
-
-
-def fitted_message(given: TrapParams, used: TrapParams) -> str:
-    """One line for the user: how :func:`fitted_to_regions` changed the segmentation."""
-    return (f"segmentation: k raised from {given.k:g} to {used.k:g}: the first frame had more than "
-            f"{given.max_regions} regions (max_regions)")
-
-
-def coarse_warning(graph: PlaneGraph, params: TrapParams) -> str | None:
-    """One line for the user where the first frame's Felzenszwalb regions are too few to track
-    by (fewer than ``FEW_REGIONS``), else None.
-
-    A smooth scene (a face, a sky, a plain wall) cut at ``k`` 7 can give a few giant regions: every
-    pattern an object shows then holds one of them, cut by the view's edge, and reads as
-    background (README, Natural backgrounds). Nothing is changed: a finer cut of a noisy scene
-    passes flickering regions for motion, so only the user can choose it.
-    """
-    if params.segmentation != "felzenszwalb" or graph.n_nodes >= FEW_REGIONS:
-        return None
-    regions = f"{graph.n_nodes} region" + ("s" if graph.n_nodes != 1 else "")
-    return (f"segmentation: the first frame has only {regions} at k {params.k:g}: objects may share "
-            f"giant regions with the background and go untracked; a smaller k (-p k:={params.k / 2:g}) cuts finer")
+    k = round(high, 3)
+    return dataclasses.replace(params, k=k), count(k)
 
 
 def _working_size(rgb: np.ndarray, params: TrapParams) -> np.ndarray:
@@ -122,11 +135,12 @@ def _in_frame_pixels(graph: PlaneGraph, scale_x: float, scale_y: float) -> Plane
 
 
 def graphs_of(frames: Iterable[np.ndarray], params: TrapParams,
-              fitted: Callable[[TrapParams], None] | None = None) -> Iterator[PlaneGraph]:
-    """Plane graph of each frame, in order, with the parameters :func:`fitted_to_regions` gives
-    on the first frame (passed to ``fitted`` where they differ from ``params``: the run reports
-    the ``k`` it used). If ``frames`` fails (a bad frame in a bag), the graphs of the frames
-    before it are still given, then the error is raised."""
+              told: Callable[[TrapParams, list[str]], None] | None = None) -> Iterator[PlaneGraph]:
+    """Plane graph of each frame, in order, with the parameters :func:`first_frame_setup` gives
+    on the first frame; where it has lines for the user, they and those parameters are passed
+    to ``told`` (the run prints them and reports the ``k`` it used). If ``frames`` fails (a bad
+    frame in a bag), the graphs of the frames before it are still given, then the error is
+    raised."""
     failure: Exception | None = None
     with ThreadPoolExecutor(params.threads, thread_name_prefix="trap-graph") as pool:
         pending: deque[Future] = deque()
@@ -141,10 +155,9 @@ def graphs_of(frames: Iterable[np.ndarray], params: TrapParams,
                 failure = error
                 break
             if first:
-                first, used = False, fitted_to_regions(rgb, params)
-                if fitted is not None and used != params:
-                    fitted(used)
-                params = used
+                first, (params, notes) = False, first_frame_setup(rgb, params)
+                if told is not None and notes:
+                    told(params, notes)
             pending.append(pool.submit(frame_graph, rgb, params))
             if len(pending) >= 2 * params.threads:
                 yield pending.popleft().result()

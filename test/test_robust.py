@@ -956,6 +956,31 @@ def test_lookalikes_that_traded_objects_where_they_crossed_get_them_back() -> No
     np.testing.assert_allclose(side_by_side[0].boxes, a)
 
 
+def test_lookalikes_that_turn_where_they_pass_keep_their_tracks_if_their_boxes_never_blend() -> None:
+    """Two 40x30 look-alikes pass 20 px apart at frame 50 and both turn there: A (right and up)
+    turns back, B (left) goes on right and up. The lines either side of the meeting fit the
+    exchanged pairing better, but the boxes never overlap by half (IoU 0.2 at most): each track
+    kept its own object and nothing is exchanged. With A 2 px from B where they pass (the boxes
+    blend), the same motions are exchanged."""
+    from trap_core.robust import swap_at_crossings
+    t = np.arange(100, dtype=float)
+    since = np.clip(t - 50, 0, None)[:, None]
+    a_centre = np.column_stack([100 + 2 * t, 200 - t]) - 4 * since * [1.0, -0.5]
+    b_centre = np.column_stack([300 - 2 * t, np.full(100, 170.0)]) + since * [4.0, -1.0]
+    size = np.tile([40.0, 30.0], (100, 1))
+    a, b = np.hstack([a_centre - size / 2, size]), np.hstack([b_centre - size / 2, size])
+    frames = np.arange(100)
+    alike = np.ones((2, 2), dtype=bool)
+    out = swap_at_crossings([_as_track(1, frames, a), _as_track(2, frames, b)], 100, 8, alike)
+    np.testing.assert_allclose(out[0].boxes, a)
+    np.testing.assert_allclose(out[1].boxes, b)
+    on_lane = a + [0.0, 18.0, 0.0, 0.0]  # 2 px from B where they pass
+    out = swap_at_crossings([_as_track(1, frames, on_lane), _as_track(2, frames, b)], 100, 8, alike)
+    late = t > 70
+    np.testing.assert_allclose(out[0].boxes[late], b[late])
+    np.testing.assert_allclose(out[1].boxes[late], on_lane[late])
+
+
 def test_lookalike_tracks_are_those_of_clusters_with_the_same_structures() -> None:
     from trap_core.robust import lookalike_tracks
     labels = np.array([0, 0, 1, 1, 2, -1])        # cluster of each pattern

@@ -15,7 +15,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, centre_path, in_rows, usual_size, with_frames
+from trap_core.clustering import Track, box_iou, box_path, centre_path, in_rows, usual_size, with_frames
 from trap_core.robust.duplicates import TURN
 from trap_core.robust.motion import straight_line
 from trap_core.robust.rejoin import structure_similarity
@@ -34,7 +34,8 @@ def lookalike_tracks(tracks: Sequence[Track], labels: np.ndarray, st_pattern: np
     return similarity[np.ix_(slot, slot)] >= min_similarity
 
 
-def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike: np.ndarray) -> list[Track]:
+def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike: np.ndarray, min_iou: float = 0.5
+                      ) -> list[Track]:
     """Tracks with their continuations exchanged where two of them meet and trade objects.
 
     Two tracks meet while their box centres are closer than the smaller of their usual sizes
@@ -50,9 +51,13 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
     middle frame (:func:`_across_meeting`). In a meeting longer than ``2 * window`` frames, the
     lines at a cut lie inside it, on boxes of two objects that travel together: the cut is not
     taken where the lines before and after the whole meeting break less with the tracks' own
-    pairing. Only tracks ``alike[a, b]`` (:func:`lookalike_tracks`) trade.
+    pairing. Only tracks ``alike[a, b]`` (:func:`lookalike_tracks`) trade. The lines either side
+    of the whole meeting exchange the tracks only if somewhere in it their boxes overlap by at
+    least ``min_iou`` (may hold the same object): boxes that stay apart each kept their own
+    object, and a trade between them would be a jump that the test at each frame looks for.
     """
     out = list(tracks)
+    boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
     centres = np.array([centre_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 2)
     sizes = np.array([usual_size(t) if len(t) else 0.0 for t in out])
     for a in range(len(out)):
@@ -66,13 +71,15 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
                 cut = _best_cut(centres[a], centres[b], range(start, stop + 1), window, TURN * size)
                 outside = _across_meeting(centres[a], centres[b], start, stop, window)
                 if cut is None:
-                    cut = (start + stop) // 2 if _gain(outside, TURN * size) is not None else None
+                    blended = np.nan_to_num(box_iou(boxes[a, start:stop], boxes[b, start:stop])).max() >= min_iou
+                    cut = (start + stop) // 2 if blended and _gain(outside, TURN * size) is not None else None
                 elif stop - start > 2 * window and outside is not None and outside[0] < outside[1]:
                     cut = None
                 if cut is None:
                     continue
                 out[a], out[b] = _exchanged(out[a], out[b], cut)
                 centres[[a, b], cut:] = centres[[b, a], cut:]
+                boxes[[a, b], cut:] = boxes[[b, a], cut:]
     return out
 
 

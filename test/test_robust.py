@@ -10,7 +10,7 @@ from trap_core.clustering import ObservedPaths, Trajectories
 from trap_core.evaluation import box_precision_recall
 from trap_core.mining._kernels import assign_occurrences, link_occurrences
 from trap_core.pipeline import TrapParams, frame_graph, synthetic_graphs, track
-from trap_core.robust import camera_transforms, rejoin_fragments, world_speed
+from trap_core.robust import BorderContacts, camera_transforms, rejoin_fragments, world_speed
 from trap_core.synthetic import PRESETS, SceneConfig
 
 
@@ -215,8 +215,34 @@ def test_rejoin_follows_the_way_an_object_went() -> None:
     assert plain[1] == plain[2] != plain[0]  # the better prediction wins without border contacts
     starts_at_border, ends_at_border = np.array([False, False, True]), np.array([True, False, False])
     labels = rejoin_fragments(np.array([0, 1, 2]), paths, pattern, 140, max_overlap=0,
-                              at_border=(starts_at_border, ends_at_border))
+                              at_border=_sure(starts_at_border, ends_at_border))
     assert labels[0] == labels[2] != labels[1]
+
+
+def test_rejoin_continues_a_fragment_that_broke_up_short_of_the_border_with_one_that_enters() -> None:
+    """Fragment A's pattern broke up before its object reached the right border (it does not
+    leave, but may be going to the border); B enters from it. They are joined only where A may
+    be going to the border. A fragment that surely went out is continued first by one that
+    surely comes in (C, predicted worse) rather than one that appears inside the view but may
+    have come from the border (D, on A's line, seen at once with C)."""
+    line = lambda n, x0, dx: np.column_stack([x0 + dx * np.arange(n), np.full(n, 100.0)])  # noqa: E731
+    paths = _paths([(0, line(55, 400, 3)),     # A: ends at x 562, inside the view
+                    (100, line(40, 630, -3))])  # B: enters from the right border
+    pattern = np.array([5, 5])
+    sure = rejoin_fragments(np.arange(2), paths, pattern, 140, max_overlap=0,
+                            at_border=_sure(np.array([False, True]), np.array([False, False])))
+    assert sure[0] != sure[1]
+    maybe = rejoin_fragments(np.arange(2), paths, pattern, 140, max_overlap=0,
+                             at_border=BorderContacts(np.array([False, True]), np.array([False, False]),
+                                                      np.array([False, True]), np.array([True, False])))
+    assert maybe[0] == maybe[1]
+    paths = _paths([(0, line(55, 455, 3)),                   # A: leaves at the right border
+                    (100, line(40, 630, -3) + [0.0, 200.0]),  # C: enters from it, 200 px lower
+                    (100, line(40, 600, -3))])               # D: appears inside, on A's line
+    labels = rejoin_fragments(np.arange(3), paths, np.array([5, 5, 5]), 140, max_overlap=0,
+                              at_border=BorderContacts(np.array([False, True, False]), np.array([True, False, False]),
+                                                       np.array([False, True, True]), np.array([True, False, False])))
+    assert labels[0] == labels[1] != labels[2]
 
 
 def test_rejoin_predicts_an_object_still_in_the_world_when_the_camera_stops() -> None:
@@ -248,10 +274,10 @@ def test_a_fragment_leaves_at_the_border_if_one_of_its_last_patterns_does() -> N
                     (100, line(40, 630, -3))])  # fragment B enters from the border at frame 100
     starts_at_border, ends_at_border = np.array([False, False, True]), np.array([True, False, False])
     joined = rejoin_fragments(np.array([0, 0, 1]), paths, np.array([5, 6, 5]), 140, max_overlap=5,
-                              at_border=(starts_at_border, ends_at_border))
+                              at_border=_sure(starts_at_border, ends_at_border))
     assert joined[0] == joined[2]
     apart = rejoin_fragments(np.array([0, 0, 1]), paths, np.array([5, 6, 5]), 140, max_overlap=0,
-                             at_border=(starts_at_border, ends_at_border))
+                             at_border=_sure(starts_at_border, ends_at_border))
     assert apart[0] != apart[2]
 
 
@@ -271,8 +297,33 @@ def test_border_contacts_of_first_and_last_boxes_moving_in_and_out() -> None:
     empty = np.zeros(8)
     result = MiningResult(empty, empty, empty, np.arange(8), np.zeros(8, int), np.zeros((8, 2)), box, box,
                           np.zeros((8, 3), int), np.array([0, 0, 0, 0]), np.array([0, 2, 4, 6, 8]), np.arange(8))
-    starts, ends = border_contacts(result, np.arange(4), 640, 480)
-    assert starts.tolist() == [True, True, False, False] and ends.tolist() == [False, False, True, True]
+    contacts = border_contacts(result, np.arange(4), 640, 480)
+    assert contacts.enters.tolist() == [True, True, False, False]
+    assert contacts.leaves.tolist() == [False, False, True, True]
+    np.testing.assert_array_equal(contacts.from_border, contacts.enters)  # nothing more without reach
+    np.testing.assert_array_equal(contacts.to_border, contacts.leaves)
+
+
+def test_border_contacts_of_patterns_that_break_up_before_the_border_or_form_after_it() -> None:
+    """Pattern 0 goes up 3 px a frame and ends 30 px below the top (40 px box: not within its
+    25 %): it does not leave, but 10 frames more at its speed take it there. Pattern 1 starts
+    30 px from the left border coming in at 2 px a frame. Pattern 2 goes up slowly (0.5 px a
+    frame) and ends as far from the border: no more than 10 frames from it."""
+    from trap_core.mining import MiningResult
+    from trap_core.robust import border_contacts
+    box = np.array([[300, 60, 340, 100], [300, 30, 340, 70],   # pattern 0, frames 0 and 10
+                    [30, 200, 70, 240], [50, 200, 90, 240],    # pattern 1, frames 0 and 10
+                    [500, 35, 540, 75], [500, 30, 540, 70]], dtype=np.float32)  # pattern 2
+    position = (box[:, :2] + box[:, 2:]) / 2
+    frames = np.array([0, 10, 0, 10, 0, 10])
+    empty = np.zeros(3)
+    result = MiningResult(empty, empty, empty, frames, np.zeros(6, int), position, box, box,
+                          np.zeros((6, 3), int), np.array([0, 0, 0]), np.array([0, 2, 4, 6]), np.arange(6))
+    contacts = border_contacts(result, np.arange(3), 640, 480, lag=1, reach=10)
+    assert not contacts.leaves.any() and not contacts.enters.any()
+    assert contacts.to_border.tolist() == [True, False, False]
+    assert contacts.from_border.tolist() == [False, True, False]
+    assert not border_contacts(result, np.arange(3), 640, 480, lag=1, reach=5).to_border[0]  # 15 px short
 
 
 def test_border_share_counts_occurrences_cut_by_the_edge_per_cluster() -> None:
@@ -299,6 +350,11 @@ def _lookalike_pair(n: int = 80) -> tuple[np.ndarray, np.ndarray]:
     a = np.column_stack([100 + 2 * frames, np.full(n, 200.0), np.full(n, 40.0), np.full(n, 30.0)])
     b = a + [60.0, 10.0, 0.0, 0.0]
     return a, b
+
+
+def _sure(enters: np.ndarray, leaves: np.ndarray) -> BorderContacts:
+    """Border contacts with no doubt about the way a pattern came or went."""
+    return BorderContacts(enters, leaves, enters, leaves)
 
 
 def _as_track(track_id: int, frames: np.ndarray, boxes: np.ndarray):

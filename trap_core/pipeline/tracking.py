@@ -81,7 +81,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     if robust and params.rejoin:
         labels = rejoin_fragments(labels, sub_paths, mined.st_pattern[clustered], n_frames,
                                   params.rejoin_similarity, params.tau,
-                                  border_contacts(mined, clustered, width, height, lag=max(1, params.tau // 2)),
+                                  border_contacts(mined, clustered, width, height, lag=max(1, params.tau // 2),
+                                                  reach=params.tau),
                                   occurrences, transforms,
                                   adjacent_gap=max(1, params.tau // 10), adjacent_reach=params.eps / 4,
                                   max_apart=params.eps)

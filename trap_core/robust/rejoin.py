@@ -15,7 +15,9 @@ is a candidate even without shared structures (noise can change them all at once
 fragments' border contacts, a fragment that left the view (its last box at the image border,
 going out) continues only one that enters it (first box at the border, coming in), and one
 that vanished inside the view (occluded) only one that appears inside it: an object comes back
-the way it went.
+the way it went. A fragment whose patterns broke up shortly before its object reached the
+border (or formed shortly after it came in) may have gone either way; pairs that surely came
+back the way they went are joined first.
 Two groups seen at once in different places (further apart than the linking distance over the
 frames both cover) are two objects and are never joined, not even through a later fragment.
 Nor is a fragment joined to a group when it goes along with other clusters (in the same place,
@@ -23,12 +25,25 @@ for most of its frames) that are mostly seen with that group elsewhere: it is on
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from scipy import sparse
 
 from trap_core.clustering import ClusterSummary, Trajectories, summarise
 from trap_core.mining import MiningResult
 from trap_core.robust.camera import map_points
+
+
+class BorderContacts(NamedTuple):
+    """Per spatio-temporal pattern (:func:`border_contacts`): whether it enters the view,
+    whether it leaves it, whether it may have come from the border and whether it may be going
+    to it (these two include entering and leaving)."""
+
+    enters: np.ndarray
+    leaves: np.ndarray
+    from_border: np.ndarray
+    to_border: np.ndarray
 
 # Clusters go along (are on one object) when they share at least ALONG_FRAMES times the overlap
 # two fragments of one object may have and ALONG_SHARE of the shorter one's frames, within a
@@ -57,15 +72,17 @@ def structure_similarity(labels: np.ndarray, st_pattern: np.ndarray, weights: np
 
 def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.ndarray, n_frames: int,
                      min_similarity: float = 0.3, max_overlap: int = 25,
-                     at_border: tuple[np.ndarray, np.ndarray] | None = None,
+                     at_border: BorderContacts | None = None,
                      weights: np.ndarray | None = None, transforms: np.ndarray | None = None,
                      adjacent_gap: int = 0, adjacent_reach: float = 0.0, max_apart: float = np.inf) -> np.ndarray:
     """Cluster labels (0..C'-1) after joining fragments of the same object.
 
     Candidate pairs and their costs are computed once on the fragments; they are then taken
     cheapest first, and a pair is joined only if the two groups it would unite (including
-    earlier joins) still share at most ``max_overlap`` frames. ``at_border``: per pattern,
-    whether it enters and whether it leaves the view (:func:`border_contacts`).
+    earlier joins) still share at most ``max_overlap`` frames. ``at_border``: the patterns'
+    contacts with the view's border (:func:`border_contacts`); pairs where the earlier fragment
+    may be going to the border and the later may come from it are candidates too, taken after
+    those that surely came back the way they went.
     ``weights``: per pattern, how much of its fragment it is (its occurrences); by default
     every pattern counts one. ``transforms``: the camera's motion (``transforms[t]`` maps
     frame-0 coordinates to frame ``t``); with it, a fragment may also continue where the
@@ -91,17 +108,20 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     adjacent = timed & (start[None, :] - summary.paths.end[:, None] <= adjacent_gap) & (adjacent_reach > 0)
     candidate = timed & ((similarity >= min_similarity) | adjacent)
     if at_border is not None:
-        enters = _flag_near(labels, paths.start, summary.paths.start, at_border[0], max_overlap)
-        leaves = _flag_near(labels, paths.end, summary.paths.end, at_border[1], max_overlap)
-        candidate &= leaves[:, None] == enters[None, :]
+        enters, from_border = (_flag_near(labels, paths.start, summary.paths.start, flags, max_overlap)
+                               for flags in (at_border.enters, at_border.from_border))
+        leaves, to_border = (_flag_near(labels, paths.end, summary.paths.end, flags, max_overlap)
+                             for flags in (at_border.leaves, at_border.to_border))
+        candidate &= (to_border[:, None] & from_border[None, :]) | (~leaves[:, None] & ~enters[None, :])
     earlier, later = np.nonzero(candidate)
     costs = _prediction_errors(summary.paths, earlier, later, transforms)
     keep = (similarity[earlier, later] >= min_similarity) | (costs <= adjacent_reach)
     earlier, later, costs = earlier[keep], later[keep], costs[keep]
+    unsure = np.zeros(costs.size, dtype=bool) if at_border is None else leaves[earlier] != enters[later]
     group = np.arange(n_clusters)
     group_covered = summary.covered.copy()
     along = _going_along(summary, overlap, ALONG_FRAMES * max_overlap, max_apart / 4)
-    for pair in np.argsort(costs, kind="stable"):
+    for pair in np.lexsort((costs, unsure)):
         a, b = group[earlier[pair]], group[later[pair]]
         both = np.flatnonzero(group_covered[a] & group_covered[b])
         if a == b or both.size > max_overlap:
@@ -226,19 +246,37 @@ def _flag_near(labels: np.ndarray, pattern_edge: np.ndarray, cluster_edge: np.nd
 
 
 def border_contacts(result: MiningResult, patterns: np.ndarray, width: int, height: int,
-                    margin: float = 0.25, lag: int = 1) -> tuple[np.ndarray, np.ndarray]:
+                    margin: float = 0.25, lag: int = 1, reach: int = 0) -> BorderContacts:
     """Per spatio-temporal pattern of ``patterns``: whether it enters the view (its first
     occurrence box reaches the image border, :func:`reaches_border`, and its ``lag``-th is
     further from the border) and whether it leaves it (its last reaches the border and its
     ``lag``-th from the end was further). A pattern that starts at the border as its object
-    goes out (the border cuts new structures out of it) does not enter."""
+    goes out (the border cuts new structures out of it) does not enter. Then whether it may
+    have come from the border and whether it may be going to it: as entering and leaving, or,
+    starting (ending) clear of the border, its first box moved back (last box moved on) at the
+    pattern's speed over ``lag`` frames for ``reach`` frames reaches it (a pattern can form
+    after its object came in, or break up before it goes out)."""
     begin, stop = result.st_offsets[patterns], result.st_offsets[patterns + 1] - 1
     later = np.minimum(begin + lag, stop)
     earlier = np.maximum(stop - lag, begin)
     rows = [result.st_rows[k] for k in (begin, later, stop, earlier)]
     first, after, last, before = (_border_distance(result, r, width, height) for r in rows)
-    return ((_occurrences_reach_border(result, rows[0], width, height, margin) & (after > first)),
-            (_occurrences_reach_border(result, rows[2], width, height, margin) & (before > last)))
+    starts_at, ends_at = (_occurrences_reach_border(result, rows[k], width, height, margin) for k in (0, 2))
+    enters = starts_at & (after > first)
+    leaves = ends_at & (before > last)
+    from_border = enters | (~starts_at & _occurrences_reach_border(
+        result, rows[0], width, height, margin, shift=_drift(result, rows[1], rows[0]) * reach))
+    to_border = leaves | (~ends_at & _occurrences_reach_border(
+        result, rows[2], width, height, margin, shift=_drift(result, rows[3], rows[2]) * reach))
+    return BorderContacts(enters, leaves, from_border, to_border)
+
+
+def _drift(result: MiningResult, start: np.ndarray, end: np.ndarray) -> np.ndarray:
+    """(N, 2) px per frame from occurrences ``start`` to ``end``, whichever comes first in time
+    (zero between occurrences of one frame): from a later one to an earlier, the way back."""
+    frames = np.abs(result.occ_frame[end] - result.occ_frame[start]).astype(float)
+    step = result.occ_position[end].astype(float) - result.occ_position[start]
+    return np.divide(step, frames[:, None], out=np.zeros_like(step), where=frames[:, None] != 0)
 
 
 def _border_distance(result: MiningResult, rows: np.ndarray, width: float, height: float) -> np.ndarray:
@@ -260,10 +298,12 @@ def border_share(result: MiningResult, patterns: np.ndarray, labels: np.ndarray,
 
 
 def _occurrences_reach_border(result: MiningResult, rows: np.ndarray, width: float, height: float,
-                              margin: float) -> np.ndarray:
-    """:func:`reaches_border` of occurrences ``rows`` (their region boxes are x0, y0, x1, y1 inclusive)."""
+                              margin: float, shift: np.ndarray | None = None) -> np.ndarray:
+    """:func:`reaches_border` of occurrences ``rows`` (their region boxes are x0, y0, x1, y1
+    inclusive), moved by ``shift`` (N, 2) px."""
     box = result.occ_box[rows].astype(float)
-    return reaches_border(np.column_stack([box[:, :2], box[:, 2:] - box[:, :2] + 1]), width, height, margin)
+    corner = box[:, :2] if shift is None else box[:, :2] + shift
+    return reaches_border(np.column_stack([corner, box[:, 2:] - box[:, :2] + 1]), width, height, margin)
 
 
 def reaches_border(boxes: np.ndarray, width: float, height: float, margin: float = 0.25) -> np.ndarray:

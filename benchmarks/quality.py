@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Benchmark: tracking quality of the defaults on synthetic videos with ground truth.
 
-Fourteen sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
+Fifteen sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
 presets, seeds 0-2), the variants looked at while the robust rules were chosen ("tuned"), variants
 never looked at while choosing them ("held-out"), frames larger than the working size ("larger",
 segmented scaled down to ``max_side``), a camera that also turns and zooms ("camera"), objects of
@@ -10,13 +10,14 @@ which the last three rules were chosen ("recent"), another made after those ("fr
 more look-alikes ("newest") on which the three rules after those were checked, one made after
 those ("untouched"), one made after every rule but the usual size from clear frames, which was
 made on it ("latest"), one made after that ("unseen"), one drawn at random after every
-rule ("blind"), and other scenes: photographs as backgrounds ("photos"). Prints, per video, the tracks
+rule ("blind"), other scenes: photographs as backgrounds ("photos"), and one drawn at random
+over cells, a road and photographs after every rule ("drawn"). Prints, per video, the tracks
 found without being told the number of objects, each object's box precision/recall (%) and
 MOTA / IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90 or
 better and the mean MOTA / IDF1, and that share over all sets run; with ``--pictures DIR``, each
 video's tracks as a contact sheet and a timeline. Graphs are cached (``--cache``), so a second
 run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,photos] [-p name:=value]``
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,photos,drawn] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
@@ -205,11 +206,27 @@ PHOTOS = [  # other scenes: the camera pans over a photograph (session 19), trac
     ("identical, 4 objects, astronaut", dict(seed=24, identical=True, objects=4, background="astronaut"),
      "felzenszwalb"),
 ]
+DRAWN = [  # drawn at random over cells, a road and photographs after every rule (session 20), tracked as it came
+    ("distinct, 5 objects, 640x360, hubble",
+     dict(seed=221, objects=5, width=640, height=360, background="hubble_deep_field"), "felzenszwalb"),
+    ("identical, person, 4 objects 0.8x, 960x540, illumination 10 %, astronaut",
+     dict(seed=222, identical=True, shape="person", objects=4, object_scale=0.8, width=960, height=540,
+          illumination=0.1, background="astronaut"), "felzenszwalb"),
+    ("identical, 5 objects, 1280x720, zoom 10 %, turn 10 deg",
+     dict(seed=223, identical=True, objects=5, width=1280, height=720, zoom=0.1, rotation=10.0), "colour"),
+    ("distinct, disc, 960x540, zoom 15 %, turn 15 deg, noise 1, Felzenszwalb",
+     dict(seed=224, shape="disc", width=960, height=540, zoom=0.15, rotation=15.0, noise=1.0), "felzenszwalb"),
+    ("identical, disc, 4 objects, 960x540, noise 1, road",
+     dict(seed=225, identical=True, shape="disc", objects=4, width=960, height=540, noise=1.0, background="road"),
+     "felzenszwalb"),
+    ("identical, person, 800x600, turn 15 deg",
+     dict(seed=226, identical=True, shape="person", width=800, height=600, rotation=15.0), "colour"),
+]
 FELZENSZWALB_ONLY = ("k", "max_regions", "sigma", "min_size", "threshold", "connectivity")  # no effect on exact-colour regions
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
         "shapes": SHAPES, "recent": RECENT, "fresh": FRESH,
         "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST, "unseen": UNSEEN, "blind": BLIND,
-        "photos": PHOTOS}
+        "photos": PHOTOS, "drawn": DRAWN}
 
 
 def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None = None,

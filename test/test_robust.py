@@ -1047,6 +1047,13 @@ def test_lookalike_tracks_are_those_of_clusters_with_the_same_structures() -> No
     tracks = [dataclasses.replace(t, cluster=c) for t, c in zip(tracks, (0, 1, 2))]
     alike = lookalike_tracks(tracks, labels, st_pattern, weights, 0.3)
     assert alike.tolist() == [[True, True, False], [True, True, False], [False, False, True]]
+    # clusters 0 and 1 also hold six structures each of their different surroundings: a quarter
+    # of each is the object's structures 7 and 8 ...
+    labels = np.r_[labels, [0] * 6, [1] * 6]
+    st_pattern = np.r_[st_pattern, np.arange(20, 26), np.arange(10, 16)]
+    weights = np.r_[weights, np.ones(12)]
+    assert not lookalike_tracks(tracks, labels, st_pattern, weights, 0.3)[0, 1]
+    assert lookalike_tracks(tracks, labels, st_pattern, weights)[0, 1]  # ... enough to look alike
 
 
 def test_lookalikes_that_traded_objects_after_holding_one_together_get_them_back() -> None:

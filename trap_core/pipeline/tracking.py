@@ -128,7 +128,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     motion_window = max(3, params.tau // 2)  # frames over which a track's motion at a point is read
     if robust and params.one_track:
         tracks = gaps_filled([drop_strays(t, max(3, params.tau // 3)) for t in tracks])
-        alike = lookalike_tracks(tracks, labels, mined.st_pattern[clustered], occurrences, params.rejoin_similarity)
+        alike = lookalike_tracks(tracks, labels, mined.st_pattern[clustered], occurrences)
         tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
         spare = np.flatnonzero((summary.length >= params.tau) & (True if moving is None else moving))
         spare = spare[~np.isin(spare, selected)]

@@ -21,8 +21,15 @@ from trap_core.robust.motion import straight_line
 from trap_core.robust.rejoin import structure_similarity
 
 
+# Two tracks' clusters share at least this share of structures where their objects look alike.
+# Different objects share next to none (at most 0.07 over every quality.py video); look-alikes
+# share less than the rejoin test asks for where their clusters also hold structures of the
+# different backgrounds around them (photographs: 0.13-0.27).
+LOOKALIKE_SIMILARITY = 0.1
+
+
 def lookalike_tracks(tracks: Sequence[Track], labels: np.ndarray, st_pattern: np.ndarray, weights: np.ndarray,
-                     min_similarity: float) -> np.ndarray:
+                     min_similarity: float = LOOKALIKE_SIMILARITY) -> np.ndarray:
     """(T, T) whether two tracks' clusters are made of the same structures: the
     :func:`trap_core.robust.rejoin.structure_similarity` of the patterns with cluster
     ``labels`` (-1: none), plane pattern ``st_pattern`` and ``weights`` (occurrences), at least

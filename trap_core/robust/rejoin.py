@@ -45,6 +45,7 @@ class BorderContacts(NamedTuple):
     from_border: np.ndarray
     to_border: np.ndarray
 
+
 # Clusters go along (are on one object) when they share at least ALONG_FRAMES times the overlap
 # two fragments of one object may have and ALONG_SHARE of the shorter one's frames, within a
 # quarter of the distance that makes two groups apart: evidence strong enough to overrule
@@ -254,8 +255,8 @@ def border_contacts(result: MiningResult, patterns: np.ndarray, width: int, heig
     goes out (the border cuts new structures out of it) does not enter. Then whether it may
     have come from the border and whether it may be going to it: as entering and leaving, or,
     starting (ending) clear of the border, its first box moved back (last box moved on) at the
-    pattern's speed over ``lag`` frames for ``reach`` frames reaches it (a pattern can form
-    after its object came in, or break up before it goes out)."""
+    pattern's speed over its first (last) ``lag`` occurrences for ``reach`` frames reaches it
+    (a pattern can form after its object came in, or break up before it goes out)."""
     begin, stop = result.st_offsets[patterns], result.st_offsets[patterns + 1] - 1
     later = np.minimum(begin + lag, stop)
     earlier = np.maximum(stop - lag, begin)

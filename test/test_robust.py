@@ -1037,18 +1037,27 @@ def test_lookalikes_that_turn_where_they_pass_keep_their_tracks_if_their_boxes_n
     np.testing.assert_allclose(out[1].boxes[late], on_lane[late])
 
 
-def test_lookalike_tracks_are_those_of_clusters_with_the_same_structures() -> None:
+def test_lookalike_tracks_are_those_of_clusters_with_the_same_structures_or_boxes_of_one_size() -> None:
+    """Tracks 1 and 2 (40x30 boxes) and track 3 (40x60) have clusters 0, 1 and 2."""
     from trap_core.robust import lookalike_tracks
     labels = np.array([0, 0, 1, 1, 2, -1])        # cluster of each pattern
     st_pattern = np.array([7, 8, 7, 8, 9, 7])     # its plane pattern
     weights = np.ones(6)
-    tracks = [_as_track(1, np.arange(3), np.ones((3, 4))), _as_track(2, np.arange(3), np.ones((3, 4))),
-              _as_track(3, np.arange(3), np.ones((3, 4)))]
+    box = np.tile([10.0, 10.0, 40.0, 30.0], (3, 1))
+    tracks = [_as_track(1, np.arange(3), box), _as_track(2, np.arange(3), box),
+              _as_track(3, np.arange(3), box * [1, 1, 1, 2])]
     tracks = [dataclasses.replace(t, cluster=c) for t, c in zip(tracks, (0, 1, 2))]
     alike = lookalike_tracks(tracks, labels, st_pattern, weights, 0.3)
     assert alike.tolist() == [[True, True, False], [True, True, False], [False, False, True]]
+    # track 2's cluster has only structures of its own (each look-alike merged with what is
+    # around it), track 3 has boxes 36x33 instead (within a tenth): both look alike by their boxes
+    alike = lookalike_tracks(tracks, labels, np.array([7, 8, 5, 6, 9, 7]), weights, 0.3)
+    assert alike[0, 1] and not alike[0, 2]
+    tracks[2] = dataclasses.replace(tracks[2], boxes=np.tile([10.0, 10.0, 36.0, 33.0], (3, 1)))
+    assert lookalike_tracks(tracks, labels, st_pattern, weights, 0.3)[0, 2]
     # clusters 0 and 1 also hold six structures each of their different surroundings: a quarter
-    # of each is the object's structures 7 and 8 ...
+    # of each is the object's structures 7 and 8 (and track 2's boxes are now 40x60) ...
+    tracks[1] = dataclasses.replace(tracks[1], boxes=box * [1, 1, 1, 2])
     labels = np.r_[labels, [0] * 6, [1] * 6]
     st_pattern = np.r_[st_pattern, np.arange(20, 26), np.arange(10, 16)]
     weights = np.r_[weights, np.ones(12)]

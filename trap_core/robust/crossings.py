@@ -6,8 +6,9 @@ then hold one object before and the other after: no stretch is repeated (that is
 :func:`trap_core.robust.drop_shared_stretches`' case), each track just turns and jumps where
 the objects meet. :func:`swap_at_crossings` gives each track the other's continuation where
 that makes both motions go on as they were going. Only look-alikes trade
-(:func:`lookalike_tracks`): where the objects differ, their patterns already told them apart,
-and two objects that meet and both turn back keep their tracks.
+(:func:`lookalike_tracks`: the same structures, or boxes of one size): where the objects differ,
+their patterns already told them apart, and two objects that meet and both turn back keep their
+tracks.
 """
 from __future__ import annotations
 
@@ -26,19 +27,27 @@ from trap_core.robust.rejoin import structure_similarity
 # share less than the rejoin test asks for where their clusters also hold structures of the
 # different backgrounds around them (photographs: 0.13-0.27).
 LOOKALIKE_SIMILARITY = 0.1
+# Boxes whose median width and height differ by at most this share are of one size.
+SAME_SIZE = 0.1
 
 
 def lookalike_tracks(tracks: Sequence[Track], labels: np.ndarray, st_pattern: np.ndarray, weights: np.ndarray,
                      min_similarity: float = LOOKALIKE_SIMILARITY) -> np.ndarray:
-    """(T, T) whether two tracks' clusters are made of the same structures: the
-    :func:`trap_core.robust.rejoin.structure_similarity` of the patterns with cluster
-    ``labels`` (-1: none), plane pattern ``st_pattern`` and ``weights`` (occurrences), at least
-    ``min_similarity``."""
+    """(T, T) whether two tracks may hold look-alike objects: their clusters are made of the
+    same structures (the :func:`trap_core.robust.rejoin.structure_similarity` of the patterns
+    with cluster ``labels`` (-1: none), plane pattern ``st_pattern`` and ``weights``
+    (occurrences) is at least ``min_similarity``), or their boxes are of one size (median width
+    and height within ``SAME_SIZE``). Over a textured background the segmentation can merge each
+    look-alike with its own surroundings, so that their clusters share no structure at all;
+    their boxes still match."""
     clusters = np.unique([t.cluster for t in tracks])
     member = np.flatnonzero(np.isin(labels, clusters))
     similarity = structure_similarity(np.searchsorted(clusters, labels[member]), st_pattern[member], weights[member])
     slot = np.searchsorted(clusters, [t.cluster for t in tracks])
-    return similarity[np.ix_(slot, slot)] >= min_similarity
+    sizes = np.array([np.median(t.boxes[:, 2:4], axis=0) if len(t) else (0.0, 0.0) for t in tracks]).reshape(-1, 2)
+    larger = np.maximum(sizes[:, None], sizes[None])
+    one_size = np.all(np.abs(sizes[:, None] - sizes[None]) <= SAME_SIZE * larger, axis=2)
+    return (similarity[np.ix_(slot, slot)] >= min_similarity) | one_size
 
 
 def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike: np.ndarray, min_iou: float = 0.5

@@ -11,7 +11,8 @@ more look-alikes ("newest") on which the three rules after those were checked, o
 those ("untouched"), one made after every rule but the usual size from clear frames, which was
 made on it ("latest"), one made after that ("unseen"), one drawn at random after every
 rule ("blind"), other scenes: photographs as backgrounds ("photos"), and one drawn at random
-over cells, a road and photographs after every rule ("drawn"). Prints, per video, the tracks
+over cells, a road and photographs after every rule but the two look-alike ones, the first of
+which was made on it ("drawn"). Prints, per video, the tracks
 found without being told the number of objects, each object's box precision/recall (%) and
 MOTA / IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90 or
 better and the mean MOTA / IDF1, and that share over all sets run; with ``--pictures DIR``, each
@@ -206,7 +207,7 @@ PHOTOS = [  # other scenes: the camera pans over a photograph (session 19), trac
     ("identical, 4 objects, astronaut", dict(seed=24, identical=True, objects=4, background="astronaut"),
      "felzenszwalb"),
 ]
-DRAWN = [  # drawn at random over cells, a road and photographs after every rule (session 20), tracked as it came
+DRAWN = [  # drawn at random over cells, a road and photographs (session 20) before the look-alike rules; as it came
     ("distinct, 5 objects, 640x360, hubble",
      dict(seed=221, objects=5, width=640, height=360, background="hubble_deep_field"), "felzenszwalb"),
     ("identical, person, 4 objects 0.8x, 960x540, illumination 10 %, astronaut",

@@ -16,7 +16,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, box_iou, box_path, centre_path, in_rows, usual_size, with_frames
+from trap_core.clustering import Track, box_centres, box_iou, box_path, in_rows, usual_size, with_frames
 from trap_core.robust.duplicates import TURN
 from trap_core.robust.motion import straight_line
 from trap_core.robust.rejoin import structure_similarity
@@ -74,7 +74,7 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
     """
     out = list(tracks)
     boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
-    centres = np.array([centre_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 2)
+    centres = box_centres(boxes)
     sizes = np.array([usual_size(t) if len(t) else 0.0 for t in out])
     for a in range(len(out)):
         for b in range(a + 1, len(out)):
@@ -94,8 +94,8 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
                 if cut is None:
                     continue
                 out[a], out[b] = _exchanged(out[a], out[b], cut)
-                centres[[a, b], cut:] = centres[[b, a], cut:]
-                boxes[[a, b], cut:] = boxes[[b, a], cut:]
+                for path in (boxes, centres):
+                    path[[a, b], cut:] = path[[b, a], cut:]
     return out
 
 

@@ -84,6 +84,23 @@ def test_camera_motion_is_what_the_frame_agrees_on_even_where_an_object_has_more
     np.testing.assert_allclose(transforms[:, :2, 2], pan, atol=1e-3)
 
 
+def test_patterns_bunched_in_one_frame_give_no_degenerate_camera_motion() -> None:
+    """Four patterns spread in frame 0 all sit on one point in frame 1: the similarity fit has
+    scale 0. It is no camera motion; the frame gets the patterns' median step instead, and the
+    chain stays invertible for the world speeds."""
+    spread = np.array([[10.0, 10.0], [200.0, 10.0], [10.0, 150.0], [180.0, 160.0]])
+    rows = [(s, 0, spread[s]) for s in range(4)] + [(s, 1, np.array([90.0, 80.0])) for s in range(4)]
+    rows += [(s, 2, np.array([90.0, 80.0]) + [3.0, 0.0]) for s in range(4)]
+    rows.sort(key=lambda r: (r[0], r[1]))
+    paths = ObservedPaths(np.array([r[0] for r in rows]), np.array([r[1] for r in rows]),
+                          np.array([r[2] for r in rows]))
+    transforms = camera_transforms(paths, 3)
+    assert np.all(np.abs(np.linalg.det(transforms)) > 0.5)
+    np.testing.assert_allclose(transforms[1, :2, :2], np.eye(2))
+    np.testing.assert_allclose(transforms[1, :2, 2], np.median([90.0, 80.0] - spread, axis=0))
+    assert np.isfinite(world_speed(paths, transforms, 4)).all()
+
+
 def test_world_speed_over_a_lag_ignores_jitter_but_not_motion() -> None:
     rng = np.random.default_rng(1)
     frames = np.arange(100)

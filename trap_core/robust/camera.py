@@ -20,6 +20,7 @@ from trap_core.clustering import ClusterSummary, ObservedPaths
 
 GRID = 12  # cells per side of the frame, one vote each for the camera's motion
 AGREE_PX = 1.0  # a cell (a pattern) agrees with a camera motion that puts it within this
+MAX_ZOOM_STEP = 1.5  # no camera zooms by half between two frames: a fit that does is degenerate
 
 
 def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:
@@ -36,10 +37,9 @@ def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:
         rows = src_rows[bounds[t]:bounds[t + 1]]
         step_matrix = np.eye(3)
         src, dst = paths.position[rows].astype(np.float32), paths.position[rows + 1].astype(np.float32)
-        if rows.size >= 3:
-            fitted = _step(src, dst, extent)
-            if fitted is not None:
-                step_matrix[:2] = fitted
+        fitted = _step(src, dst, extent) if rows.size >= 3 else None
+        if fitted is not None:
+            step_matrix[:2] = fitted
         elif rows.size:
             step_matrix[:2, 2] = np.median(dst - src, axis=0)
         transforms[t + 1] = step_matrix @ transforms[t]
@@ -48,7 +48,9 @@ def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:
 
 def _step(src: np.ndarray, dst: np.ndarray, extent: np.ndarray) -> np.ndarray | None:
     """(2, 3) similarity taking ``src`` to ``dst`` (patterns' positions in two frames): the one
-    most cells of the frame agree on, refined on the patterns it fits."""
+    most cells of the frame agree on, refined on the patterns it fits. None where no fit is found
+    or the fit zooms by more than ``MAX_ZOOM_STEP`` (patterns bunched in one frame can give a
+    scale of 0, which no chain of camera motions survives)."""
     cell = np.minimum((src / extent * GRID).astype(np.int64), GRID - 1) @ np.array([GRID, 1])
     cells, inverse = np.unique(cell, return_inverse=True)
     if cells.size >= 3:
@@ -60,7 +62,10 @@ def _step(src: np.ndarray, dst: np.ndarray, extent: np.ndarray) -> np.ndarray | 
             if fits.sum() >= 3:
                 src, dst = src[fits], dst[fits]
     fitted, _ = cv2.estimateAffinePartial2D(src, dst, method=cv2.LMEDS)
-    return fitted
+    if fitted is None:
+        return None
+    scale = np.sqrt(abs(np.linalg.det(fitted[:, :2])))
+    return fitted if 1 / MAX_ZOOM_STEP <= scale <= MAX_ZOOM_STEP else None
 
 
 def _cell_medians(points: np.ndarray, cell: np.ndarray, n_cells: int) -> np.ndarray:

@@ -91,6 +91,8 @@ def test_three_regions_meeting_make_an_inner_face_and_mirror_reverses_it() -> No
     graph = _graph(labels)
     inner = [graph.face_nodes(f).tolist() for f in range(graph.n_faces) if not graph.outer_faces()[f]]
     assert len(inner) == 1 and sorted(inner[0]) == [0, 1, 2]
+    inner_face = int(np.flatnonzero(~graph.outer_faces())[0])
+    np.testing.assert_array_equal(graph.faces_nodes(np.array([inner_face, -1])), [0, 1, 2])  # -1: padding
     mirrored = _graph(labels[:, ::-1])  # relabelled: 0 is now the top-left region (was 1)
     mirror_inner = [mirrored.face_nodes(f).tolist() for f in range(mirrored.n_faces) if not mirrored.outer_faces()[f]]
 

@@ -692,6 +692,37 @@ def test_a_cluster_on_two_objects_at_once_is_split_down_the_hierarchy() -> None:
     assert len(set(split_mixed(one_cluster, pattern_distances(later), later, np.full(4, 40.0), 25).tolist())) == 1
 
 
+def test_a_pattern_on_another_tracks_object_is_handed_to_that_track_only_where_its_own_is_elsewhere() -> None:
+    """Two objects, one above the other on backgrounds of their own; one of the lower object's
+    patterns was clustered with the upper object's."""
+    from trap_core.mining import MiningParams, mine
+    from trap_core.robust import hand_to_owners
+    params = TrapParams(segmentation="colour")
+    graphs = []
+    for t in range(30):
+        rgb = np.zeros((120, 240, 3), np.uint8)
+        rgb[:60], rgb[60:] = (60, 60, 60), (0, 0, 120)
+        x = 40 + 4 * t
+        for y in (20, 80):
+            rgb[y:y + 20, x:x + 35] = (0, 200, 0)
+            rgb[y:y + 6, x + 4:x + 10], rgb[y:y + 6, x + 10:x + 16] = (200, 0, 0), (200, 200, 0)
+            rgb[y + 14:y + 20, x + 20:x + 26] = (0, 200, 200)
+        graphs.append(frame_graph(rgb, params))
+    result = mine(graphs, MiningParams(eps=40.0, tau=5, freq_st_min=10, max_faces=3, linking="assignment", reach=0.8))
+    lower = np.array([result.occ_position[result.st(p), 1].mean() > 60 for p in range(result.n_st)])
+    assert 3 <= lower.sum() <= result.n_st - 3
+    stray = np.flatnonzero(lower)[0]
+    labels = np.where(lower, 1, 0)
+    labels[stray] = 0
+    handed = hand_to_owners(result, labels, [0, 1], graphs)
+    np.testing.assert_array_equal(handed, np.where(lower, 1, 0))
+    # without the upper object's patterns, cluster 0 is a second piece of the lower object: kept
+    alone = np.where(lower, 1, -1)
+    alone[stray] = 0
+    np.testing.assert_array_equal(hand_to_owners(result, alone, [0, 1], graphs), alone)
+    assert hand_to_owners(result, labels, [0], graphs) is labels  # one track: nobody to hand to
+
+
 def test_a_pattern_whose_path_went_on_with_a_lookalike_is_split_from_the_lookalike() -> None:
     """Two look-alikes meet at frame 40; one pattern's path went on with the other object, so
     over 200 frames the two patterns are close on average (apart only before the meeting)."""

@@ -179,7 +179,7 @@ def core_regions(graph: PlaneGraph, face_sets: np.ndarray, share: float) -> tupl
     its patterns hold."""
     counts: dict[int, int] = {}
     for faces in face_sets:
-        for node in np.unique(np.concatenate([graph.face_nodes(f) for f in faces if f >= 0])).tolist():
+        for node in graph.faces_nodes(faces).tolist():
             counts[node] = counts.get(node, 0) + 1
     nodes = np.fromiter(counts.keys(), dtype=np.int64, count=len(counts))
     seen = np.fromiter(counts.values(), dtype=np.int64, count=len(counts))

@@ -38,7 +38,7 @@ class FaceTable:
 
     def nodes(self, faces: frozenset[int]) -> np.ndarray:
         """Graph nodes of a face set (sorted, unique)."""
-        return np.unique(np.concatenate([self.graph.face_nodes(f) for f in faces]))
+        return self.graph.faces_nodes(faces)
 
 
 def face_table(graph: PlaneGraph) -> FaceTable:

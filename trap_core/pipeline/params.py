@@ -74,7 +74,8 @@ class TrapParams:
                                   "stands above, at any frame rate); 0 = off")
     one_object: bool = _p(True, "robust: a cluster of the cut whose patterns lie on two objects at once (further "
                                 "apart than half their sizes on average, or in tau frames) is split down the "
-                                "hierarchy")
+                                "hierarchy; a selected cluster's pattern that shares its regions mostly with "
+                                "another selected cluster's, while its own is elsewhere too, goes to that cluster")
     rejoin: bool = _p(True, "robust: rejoin fragments of one object across occlusions and exits")
     rejoin_similarity: float = _p(0.3, "robust: share of a fragment (counted in occurrences) whose structures the "
                                        "other also has, needed to rejoin them")

@@ -17,9 +17,9 @@ from trap_core.rag import PlaneGraph
 from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed,
                               continue_to_border, continue_tracks, drop_repeated_pieces, drop_shared_stretches,
                               drop_still_regions, drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes,
-                              join_handovers, keep_one_size, lookalike_tracks, mend_shared_stretches, merge_duplicates,
-                              pattern_sizes, rejoin_fragments, separate_groups, split_mixed, swap_at_crossings,
-                              world_speed)
+                              hand_to_owners, join_handovers, keep_one_size, lookalike_tracks, mend_shared_stretches,
+                              merge_duplicates, pattern_sizes, rejoin_fragments, separate_groups, split_mixed,
+                              swap_at_crossings, world_speed)
 
 
 @dataclass
@@ -97,6 +97,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                                params.min_track_length, params.separation, eligible=moving, own_frames=own_frames)
     all_labels = np.full(mined.n_st, -1, dtype=np.int64)
     all_labels[clustered] = labels
+    if robust and params.one_object:
+        all_labels = hand_to_owners(mined, all_labels, selected, graphs)
     lag = max(1, params.tau // 5)  # frames either side where a region is looked for again
 
     def track_of(cluster: int, track_id: int) -> Track:

@@ -66,6 +66,11 @@ class PlaneGraph:
         """Nodes around ``face`` in traversal order (a node repeats where the face touches it twice)."""
         return self.he_origin[self.face_half_edges[self.face_offsets[face]:self.face_offsets[face + 1]]]
 
+    def faces_nodes(self, faces: np.ndarray | frozenset[int]) -> np.ndarray:
+        """Nodes (sorted, distinct) around a set of faces, such as one pattern occurrence (face
+        ids below 0 are padding and skipped)."""
+        return np.unique(np.concatenate([self.face_nodes(f) for f in faces if f >= 0]))
+
     def outer_faces(self) -> np.ndarray:
         """(F,) bool: the face touches the outside node (it is part of the outer face)."""
         touches = self.he_origin[self.face_half_edges] == self.outside

@@ -692,25 +692,31 @@ def test_a_cluster_on_two_objects_at_once_is_split_down_the_hierarchy() -> None:
     assert len(set(split_mixed(one_cluster, pattern_distances(later), later, np.full(4, 40.0), 25).tolist())) == 1
 
 
-def test_a_pattern_on_another_tracks_object_is_handed_to_that_track_only_where_its_own_is_elsewhere() -> None:
-    """Two objects, one above the other on backgrounds of their own; one of the lower object's
-    patterns was clustered with the upper object's."""
+def _stacked_objects(rows: tuple[int, int], split: int = 60) -> tuple[list, object, np.ndarray]:
+    """30 frames of two objects moving right, at the heights ``rows``, over a grey background above
+    ``split`` and a blue one below; their graphs, mining and which patterns are the lower one's."""
     from trap_core.mining import MiningParams, mine
-    from trap_core.robust import hand_to_owners
     params = TrapParams(segmentation="colour")
     graphs = []
     for t in range(30):
         rgb = np.zeros((120, 240, 3), np.uint8)
-        rgb[:60], rgb[60:] = (60, 60, 60), (0, 0, 120)
+        rgb[:split], rgb[split:] = (60, 60, 60), (0, 0, 120)
         x = 40 + 4 * t
-        for y in (20, 80):
+        for y in rows:
             rgb[y:y + 20, x:x + 35] = (0, 200, 0)
             rgb[y:y + 6, x + 4:x + 10], rgb[y:y + 6, x + 10:x + 16] = (200, 0, 0), (200, 200, 0)
             rgb[y + 14:y + 20, x + 20:x + 26] = (0, 200, 200)
         graphs.append(frame_graph(rgb, params))
     result = mine(graphs, MiningParams(eps=40.0, tau=5, freq_st_min=10, max_faces=3, linking="assignment", reach=0.8))
-    lower = np.array([result.occ_position[result.st(p), 1].mean() > 60 for p in range(result.n_st)])
+    lower = np.array([result.occ_position[result.st(p), 1].mean() > split for p in range(result.n_st)])
     assert 3 <= lower.sum() <= result.n_st - 3
+    return graphs, result, lower
+
+
+def test_a_pattern_on_another_tracks_object_is_handed_to_that_track_only_where_its_own_is_elsewhere() -> None:
+    """One of the lower object's patterns was clustered with the upper object's."""
+    from trap_core.robust import hand_to_owners
+    graphs, result, lower = _stacked_objects((20, 80))
     stray = np.flatnonzero(lower)[0]
     labels = np.where(lower, 1, 0)
     labels[stray] = 0
@@ -721,6 +727,27 @@ def test_a_pattern_on_another_tracks_object_is_handed_to_that_track_only_where_i
     alone[stray] = 0
     np.testing.assert_array_equal(hand_to_owners(result, alone, [0, 1], graphs), alone)
     assert hand_to_owners(result, labels, [0], graphs) is labels  # one track: nobody to hand to
+
+
+@pytest.mark.parametrize("second, apart", [((70, 90, 70, 90), True), ((10, 60, 25, 35), False)])
+def test_a_track_in_two_places_keeps_its_long_lived_patterns_place_and_parts_side_by_side(second, apart) -> None:
+    """Occurrences of one frame that share no region: far apart, the place of the long-lived
+    patterns is kept, however few they are; side by side (a person's legs), all are."""
+    from trap_core.clustering import one_place
+    from trap_core.rag import build_plane_graph
+    y0, y1, x0, x1 = second
+    labels = np.zeros((100, 100), dtype=np.int32)
+    labels[10:60, 10:20] = 1   # the first place: regions 1 and 2
+    labels[10:60, 20:22] = 2
+    labels[y0:y1, x0:x1] = 3   # the second: regions 3 and 4
+    labels[y0:y1, x1:x1 + 2] = 4
+    graph = build_plane_graph(labels, 5, np.zeros((100, 100, 3), np.uint8))
+    node_sets = [np.array([1, 2]), np.array([3, 4]), np.array([3, 4]), np.array([3])]
+    lifetimes = np.array([100.0, 10.0, 10.0, 10.0])
+    kept = one_place(graph, node_sets, lifetimes, 0.8)
+    assert len(kept) == (1 if apart else 4)
+    assert np.array_equal(kept[0], [1, 2])
+    assert len(one_place(graph, node_sets, np.array([1.0, 10.0, 10.0, 10.0]), 0.8)) == (3 if apart else 4)
 
 
 def test_a_pattern_whose_path_went_on_with_a_lookalike_is_split_from_the_lookalike() -> None:

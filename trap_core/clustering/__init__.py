@@ -6,7 +6,7 @@ from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns
 from trap_core.clustering.selection import ClusterSummary, select_clusters, summarise, twin_clusters
 from trap_core.clustering.tracks import (Track, box_centres, box_containment, box_iou, box_path, build_track,
                                         centre_inside, centre_path, centre_steps, core_regions, frame_face_sets, in_rows,
-                                        track_pieces, usual_size, with_frames)
+                                        one_place, track_pieces, usual_size, with_frames)
 from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
 
 __all__ = [
@@ -32,6 +32,7 @@ __all__ = [
     "labels_after_merges",
     "lifetime_cut",
     "observed_paths",
+    "one_place",
     "pattern_distances",
     "select_clusters",
     "summarise",

@@ -128,9 +128,9 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     """Box of the cluster in each frame: around the regions of its patterns' occurrences there.
 
     With ``graphs`` and ``core_share > 0`` (ours), only the regions found in at least that
-    share of the frame's occurrences count (as many as the most shared region): a pattern that
-    mixes the object with a background region it passes over then does not stretch the box
-    to that whole background region.
+    share of the frame's occurrences in the track's place count (as many as the most shared
+    region, :func:`core_regions`): a pattern that mixes the object with a background region it
+    passes over then does not stretch the box to that whole background region.
 
     Confidence: the number of the cluster's patterns seen in the frame over the most seen in
     any frame (1 where the object shows all its structure).
@@ -150,8 +150,8 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     np.maximum.at(y1, inverse, boxes[:, 3])
     around = np.column_stack([x0, y0, x1 - x0 + 1, y1 - y0 + 1])
     if graphs is not None and core_share > 0:
-        for slot, (frame, face_sets) in enumerate(frame_face_sets(result, patterns)):
-            around[slot] = graphs[frame].nodes_box(core_regions(graphs[frame], face_sets, core_share)[0])
+        for slot, (frame, face_sets, lifetimes) in enumerate(frame_face_sets(result, patterns)):
+            around[slot] = graphs[frame].nodes_box(core_regions(graphs[frame], face_sets, core_share, lifetimes)[0])
     seen = np.unique(np.column_stack([inverse, owner]), axis=0)[:, 0]
     per_frame = np.bincount(seen, minlength=known.size).astype(float)
     score = per_frame / per_frame.max() if per_frame.size else per_frame
@@ -161,26 +161,82 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     return Track(track_id, known, around, score, cluster, points)
 
 
-def frame_face_sets(result: MiningResult, patterns: np.ndarray) -> Iterator[tuple[int, np.ndarray]]:
-    """Per frame where any of ``patterns`` occurs, in frame order: the frame and the face sets of
-    those occurrences (rows of ``occ_faces``)."""
-    rows, _ = result.rows_of(patterns)
+def frame_face_sets(result: MiningResult, patterns: np.ndarray) -> Iterator[tuple[int, np.ndarray, np.ndarray]]:
+    """Per frame where any of ``patterns`` occurs, in frame order: the frame, the face sets of
+    those occurrences (rows of ``occ_faces``) and the lifetime of each one's pattern (its
+    occurrences in the whole video)."""
+    rows, owner = result.rows_of(patterns)
     frames = result.occ_frame[rows]
+    lifetimes = np.diff(result.st_offsets)[patterns][owner]
     order = np.argsort(frames, kind="stable")
     known, starts = np.unique(frames[order], return_index=True)
     for frame, start, stop in zip(known.tolist(), starts, np.r_[starts[1:], order.size]):
-        yield frame, result.occ_faces[rows[order[start:stop]]]
+        yield frame, result.occ_faces[rows[order[start:stop]]], lifetimes[order[start:stop]]
 
 
-def core_regions(graph: PlaneGraph, face_sets: np.ndarray, share: float) -> tuple[np.ndarray, np.ndarray]:
+def core_regions(graph: PlaneGraph, face_sets: np.ndarray, share: float,
+                 lifetimes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Regions (graph nodes) that at least ``share`` of one frame's occurrences (face sets)
     contain, as many as the most shared region, and those most shared ones: the track's box
     surrounds the first (:func:`build_track`); the second are the object itself, whatever else
-    its patterns hold."""
-    counts: dict[int, int] = {}
-    for faces in face_sets:
-        for node in graph.faces_nodes(faces).tolist():
-            counts[node] = counts.get(node, 0) + 1
-    nodes = np.fromiter(counts.keys(), dtype=np.int64, count=len(counts))
-    seen = np.fromiter(counts.values(), dtype=np.int64, count=len(counts))
+    its patterns hold.
+
+    Only the occurrences in the track's place count (:func:`one_place`): where the cluster is
+    in two places at once, the one of its longest-lived patterns (``lifetimes``).
+    """
+    return _most_held(one_place(graph, [graph.faces_nodes(faces) for faces in face_sets], lifetimes, share), share)
+
+
+def one_place(graph: PlaneGraph, node_sets: list[np.ndarray], lifetimes: np.ndarray,
+              share: float) -> list[np.ndarray]:
+    """The node sets (occurrences of one frame) of the place where the track's object is.
+
+    Occurrences that share a region are in one place. Places whose core boxes (regions in
+    ``share`` of their occurrences) are closer than half the smaller box's larger side are parts
+    of one thing: a person's two legs share no region but stand side by side. Further apart, the
+    cluster is in two places (its patterns went on with a look-alike or a structure they passed,
+    often a few short ones); the place whose patterns have the longest ``lifetimes`` in all is
+    the track's, since a track's own long patterns outweigh a few short ones elsewhere, however
+    many those are in the frame.
+    """
+    first_holder: dict[int, int] = {}
+    shared = [(item, first_holder.setdefault(node, item))
+              for item, nodes in enumerate(node_sets) for node in nodes.tolist()]
+    place = _components(len(node_sets), shared)
+    if place.max() == 0:
+        return node_sets
+    members = [np.flatnonzero(place == p) for p in range(place.max() + 1)]
+    boxes = np.array([graph.nodes_box(_most_held([node_sets[i] for i in items], share)[0]) for items in members])
+    near = [(a, b) for a in range(len(members)) for b in range(a + 1, len(members))
+            if _gap(boxes[a], boxes[b]) < min(boxes[a, 2:].max(), boxes[b, 2:].max()) / 2]
+    place = _components(len(members), near)[place]
+    if place.max() == 0:
+        return node_sets
+    heaviest = int(np.argmax(np.bincount(place, weights=lifetimes)))
+    return [nodes for nodes, where in zip(node_sets, place) if where == heaviest]
+
+
+def _most_held(node_sets: list[np.ndarray], share: float) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes held by at least ``share`` of ``node_sets`` as many as the most held one, and those
+    most held (each set's nodes are distinct)."""
+    nodes, seen = np.unique(np.concatenate(node_sets), return_counts=True)
     return nodes[seen >= share * seen.max()], nodes[seen == seen.max()]
+
+
+def _gap(a: np.ndarray, b: np.ndarray) -> float:
+    """Distance between boxes (x, y, w, h) along the axis that separates them most (< 0: overlap)."""
+    return float(max(a[0] - b[0] - b[2], b[0] - a[0] - a[2], a[1] - b[1] - b[3], b[1] - a[1] - a[3]))
+
+
+def _components(n: int, pairs: list[tuple[int, int]]) -> np.ndarray:
+    """Component (numbered 0..) of each of ``n`` items linked by ``pairs`` (union-find)."""
+    parent = list(range(n))
+
+    def root(item: int) -> int:
+        while parent[item] != item:
+            parent[item] = parent[parent[item]]
+            item = parent[item]
+        return item
+    for a, b in pairs:
+        parent[root(a)] = root(b)
+    return np.unique([root(item) for item in range(n)], return_inverse=True)[1].reshape(-1)

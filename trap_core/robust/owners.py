@@ -4,9 +4,10 @@ Average linkage (TRAP_SPEC section 6) puts a pattern with the cluster whose path
 to its own over the frames they share. Where one object passes close by another for a while,
 short patterns of the second (often with a background region beside it) run near the first
 one's path then, and can join the first one's cluster. That cluster is then in two places at
-once: its box covers both objects, or, since a track's box keeps the regions most of the
-frame's occurrences hold (:func:`trap_core.clustering.core_regions`), it goes over to the
-other object for as long as those patterns last.
+once: its box covers both objects, or goes over to the other object for as long as those
+patterns last, where the box cannot tell the track's own place
+(:func:`trap_core.clustering.one_place`: the two side by side, or the other's patterns the
+longer-lived).
 
 Regions tell whose a pattern is: in one frame, patterns of one object hold the same regions.
 A pattern of a selected cluster is handed to another selected cluster when, in most of its

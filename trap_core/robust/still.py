@@ -57,11 +57,11 @@ def drop_still_regions(track: Track, result: MiningResult, pattern_labels: np.nd
     slot[track.frames] = np.arange(len(track))
     boxes = track.boxes.astype(float)
     patterns = np.flatnonzero(pattern_labels == track.cluster)
-    for frame, face_sets in frame_face_sets(result, patterns):
+    for frame, face_sets, lifetimes in frame_face_sets(result, patterns):
         i = slot[frame]
         if i < 0:
             continue
-        core, anchor = core_regions(graphs[frame], face_sets, share)
+        core, anchor = core_regions(graphs[frame], face_sets, share, lifetimes)
         others = np.setdiff1d(core, anchor)
         if others.size == 0:
             continue

@@ -26,7 +26,8 @@ class _Stub:
         self.labels = np.array([cluster for cluster, _ in pairs])
         self.mining = type("Mined", (), {"n_patterns": hashes.size, "n_st": len(pairs), "pattern_hash": hashes,
                                          "st_pattern": np.searchsorted(hashes, [key for _, key in pairs]),
-                                         "st_offsets": np.arange(len(pairs) + 1) * 10})()
+                                         "st_offsets": np.arange(len(pairs) + 1) * 10,
+                                         "st_occurrences": np.full(len(pairs), 10)})()
         self.hierarchy = type("Cut", (), {"cut_level": 1})()
 
 

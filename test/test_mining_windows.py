@@ -40,7 +40,7 @@ def test_windows_give_the_whole_videos_components_when_every_pattern_is_frequent
                                                                                                              np.max))
     assert np.sum((first < 50) & (last >= 110)) > 100  # patterns that continue through two window borders
     frames = stitched.occ_frame[stitched.st_rows]
-    owner = np.repeat(np.arange(stitched.n_st), np.diff(stitched.st_offsets))
+    owner = np.repeat(np.arange(stitched.n_st), stitched.st_occurrences)
     assert np.all((np.diff(frames) >= 0) | (np.diff(owner) != 0))  # sorted by frame in each pattern
 
 

@@ -167,7 +167,7 @@ def frame_face_sets(result: MiningResult, patterns: np.ndarray) -> Iterator[tupl
     occurrences in the whole video)."""
     rows, owner = result.rows_of(patterns)
     frames = result.occ_frame[rows]
-    lifetimes = np.diff(result.st_offsets)[patterns][owner]
+    lifetimes = result.st_occurrences[patterns][owner]
     order = np.argsort(frames, kind="stable")
     known, starts = np.unique(frames[order], return_index=True)
     for frame, start, stop in zip(known.tolist(), starts, np.r_[starts[1:], order.size]):

@@ -96,7 +96,7 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
             clustered = np.arange(run.mining.n_st)
             leaves = [leaf_scores(run.mining, clustered, gt, n_frames) for gt in truth]
             entry["best_cluster"] = [best_cluster(run.hierarchy, lv) for lv in leaves]
-            occurrences = np.diff(run.mining.st_offsets)
+            occurrences = run.mining.st_occurrences
             for o, lv in enumerate(leaves):
                 curves = level_curves(run.hierarchy, lv, run.trajectories, occurrences, n_frames)
                 entry.setdefault("figures", []).append(_plot_levels(curves, run.hierarchy.cut_level,

@@ -38,6 +38,11 @@ class MiningResult:
     def n_st(self) -> int:
         return int(self.st_pattern.size)
 
+    @property
+    def st_occurrences(self) -> np.ndarray:
+        """(S,) occurrences of each spatio-temporal pattern (its rows in ``st_rows``)."""
+        return np.diff(self.st_offsets)
+
     def st(self, index: int) -> np.ndarray:
         """Occurrence rows of spatio-temporal pattern ``index``."""
         return self.st_rows[self.st_offsets[index]:self.st_offsets[index + 1]]
@@ -45,7 +50,7 @@ class MiningResult:
     def rows_of(self, patterns: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Occurrence rows of the spatio-temporal patterns ``patterns`` (increasing), pattern after
         pattern, and for each row the index in ``patterns`` of the pattern it belongs to."""
-        lengths = np.diff(self.st_offsets)
+        lengths = self.st_occurrences
         chosen = np.zeros(self.n_st, dtype=bool)
         chosen[patterns] = True
         return self.st_rows[np.repeat(chosen, lengths)], np.repeat(np.arange(len(patterns)), lengths[patterns])
@@ -53,7 +58,7 @@ class MiningResult:
     def freq_st(self) -> np.ndarray:
         """(S,) distinct frames of each spatio-temporal pattern."""
         frames = self.occ_frame[self.st_rows]
-        owner = np.repeat(np.arange(self.n_st), np.diff(self.st_offsets))
+        owner = np.repeat(np.arange(self.n_st), self.st_occurrences)
         distinct = np.ones(frames.size, dtype=bool)
         distinct[1:] = (frames[1:] != frames[:-1]) | (owner[1:] != owner[:-1])
         return np.bincount(owner[distinct], minlength=self.n_st)
@@ -62,7 +67,7 @@ class MiningResult:
         """The spatio-temporal patterns that higher thresholds would have kept: ``freq(P) >= min_freq``
         and ``freq_st >= min_freq_st`` (mining is exact, so this equals mining again with them)."""
         keep = (self.pattern_frequency[self.st_pattern] >= min_freq) & (self.freq_st() >= min_freq_st)
-        sizes = np.diff(self.st_offsets)[keep]
+        sizes = self.st_occurrences[keep]
         rows, _ = self.rows_of(np.flatnonzero(keep))
         return MiningResult(self.pattern_hash, self.pattern_frequency, self.pattern_faces, self.occ_frame,
                             self.occ_pattern, self.occ_position, self.occ_box, self.occ_node_box, self.occ_faces,

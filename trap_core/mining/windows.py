@@ -129,7 +129,7 @@ class WindowedMiner:
             self._pattern_faces[hash_] = faces
             self._pattern_frequency[hash_] = max(frequency, self._pattern_frequency.get(hash_, 0))
         local = np.empty(mined.occ_frame.size, dtype=np.int64)
-        local[mined.st_rows] = np.repeat(np.arange(mined.n_st), np.diff(mined.st_offsets))
+        local[mined.st_rows] = np.repeat(np.arange(mined.n_st), mined.st_occurrences)
         first_id = len(self._parent)
         self._parent.extend(range(first_id, first_id + mined.n_st))
         self._owned_frames = np.r_[self._owned_frames, np.zeros(mined.n_st, dtype=np.int64)]

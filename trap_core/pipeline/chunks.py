@@ -225,7 +225,7 @@ def _structures(result: TrackingResult, cluster: int) -> dict[int, float]:
     mined = result.mining
     patterns = np.flatnonzero(result.labels == cluster)
     hashes = mined.pattern_hash[mined.st_pattern[patterns]]
-    counts = np.diff(mined.st_offsets)[patterns].astype(float)
+    counts = mined.st_occurrences[patterns].astype(float)
     out: dict[int, float] = {}
     for key, count in zip(hashes.tolist(), counts.tolist()):
         out[key] = out.get(key, 0.0) + count

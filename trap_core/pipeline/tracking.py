@@ -77,7 +77,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     labels = hierarchy.labels
     if robust and params.one_object:
         labels = split_mixed(hierarchy, distances, sub_paths, pattern_sizes(mined, clustered), params.tau)
-    occurrences = np.diff(mined.st_offsets)[clustered]
+    occurrences = mined.st_occurrences[clustered]
     if robust and params.rejoin:
         labels = rejoin_fragments(labels, sub_paths, mined.st_pattern[clustered], n_frames,
                                   params.rejoin_similarity, params.tau,

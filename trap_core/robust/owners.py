@@ -58,7 +58,7 @@ def hand_to_owners(result: MiningResult, labels: np.ndarray, selected: Sequence[
     slot[np.asarray(selected)] = np.arange(len(selected))
     sighting_pattern, sighting_frame, shared = _shared_regions(result, patterns, graphs)
     cluster = slot[labels[patterns[sighting_pattern]]]
-    weight = np.diff(result.st_offsets)[patterns[sighting_pattern]].astype(float)  # occurrences: its lifetime
+    weight = result.st_occurrences[patterns[sighting_pattern]].astype(float)  # occurrences: its lifetime
     n_sightings, n_clusters = cluster.size, len(selected)
     support = np.zeros((n_sightings, n_clusters))
     np.add.at(support, (shared[0], cluster[shared[1]]), weight[shared[1]])

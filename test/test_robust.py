@@ -1319,6 +1319,29 @@ def test_a_track_that_takes_over_after_travelling_with_another_object_is_appende
     assert len(join_handovers(tracks, 100, 12, 40.0)) == 3
 
 
+def test_a_track_that_starts_beside_a_wandering_end_takes_over_when_it_is_the_only_one() -> None:
+    """Track 1 follows an object moving right until frame 50, then wanders on to the right and
+    up (its boxes between look-alikes) until it ends at frame 59, while its object turned back
+    at frame 50. Track 2 starts at frame 55 on the object, 36 px from track 1's last box, and
+    goes left: far from where track 1's line points. It is the only track near that last box,
+    so it takes over: track 1 keeps its frames before 55 and track 2's boxes from there. With
+    a second such track beside the first, neither takes over."""
+    from trap_core.robust import join_handovers
+    frames = np.arange(100)
+    x = np.where(frames <= 50, 100 + 2 * frames, 200 - 2 * (frames - 50)).astype(float)
+    boxes = np.column_stack([x, np.full(100, 170.0), np.full(100, 40.0), np.full(100, 30.0)])
+    wandering = boxes[:60] + [0.0, 30.0, 0.0, 0.0]
+    wandering[51:, 0] = 200 + np.arange(1, 10)
+    wandering[51:, 1] = 200 - np.arange(1, 10)
+    tracks = [_as_track(1, frames[:60], wandering), _as_track(2, frames[55:], boxes[55:])]
+    out = join_handovers(tracks, 100, 12, 40.0)
+    assert len(out) == 1
+    assert out[0].frames.tolist() == list(range(100))
+    np.testing.assert_allclose(out[0].boxes[55:], boxes[55:])
+    beside = boxes[55:] + [0.0, 15.0, 0.0, 0.0]
+    assert len(join_handovers(tracks + [_as_track(3, frames[55:], beside)], 100, 12, 40.0)) == 3
+
+
 def test_a_piece_of_a_track_on_another_tracks_object_is_dropped() -> None:
     """Track 2 holds its own object in frames 0-39 and, after a 30-frame gap, track 1's object
     in 70-99 (IoU 0.8, a box inside track 1's, or one whose centre is in it): that piece goes. A piece on track 1's object

@@ -111,7 +111,13 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
     after the end, and over the first ``window`` of them be at most ``reach`` px (median) from
     where the earlier track's motion (a straight line through its last ``window`` box centres)
     puts it: where look-alikes part, its first boxes may still lie between the two. The closest
-    such track is taken; its counted frames are appended. Ids are renumbered 1.. in order.
+    such track is taken; its counted frames are appended.
+
+    Where no track is that close to the motion, the one track whose first counted box is at most
+    ``reach`` px from the earlier track's last box takes over: where the object turned as it met
+    a look-alike, the earlier track's last boxes wander between the two and their line points
+    nowhere. The earlier track then ends where the later one starts, whose boxes (but those on a
+    third track's object) are appended from there. Ids are renumbered 1.. in order.
     """
     out = list(tracks)
     slot = 0
@@ -124,6 +130,7 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
             continue
         velocity, origin = line
         best, best_error, best_rows = None, reach, None
+        nearby = []  # (track, its rows from its start) whose first counted box is near the last box
         for other, later in enumerate(out):
             if other == slot or int(later.frames[0]) > end + window:
                 continue
@@ -131,15 +138,22 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
             on_third = repeats_others(later, thirds, min_iou, centred=True)
             if np.any(~on_third & (later.frames < end - window)):
                 continue
-            rows = (later.frames > end) & ~repeats_others(later, thirds, min_iou)
+            own = ~repeats_others(later, thirds, min_iou)
+            rows = (later.frames > end) & own
             after = np.flatnonzero(rows)
             if after.size < window or later.frames[after[0]] > end + window:
                 continue
             first = after[:window]
+            centres = box_centres(later.boxes[first])
             predicted = origin + velocity * later.frames[first][:, None]
-            error = float(np.median(np.linalg.norm(box_centres(later.boxes[first]) - predicted, axis=1)))
+            error = float(np.median(np.linalg.norm(centres - predicted, axis=1)))
             if error <= best_error:
                 best, best_error, best_rows = other, error, rows
+            elif np.linalg.norm(centres[0] - box_centres(current.boxes[-1:])[0]) <= reach:
+                nearby.append((other, own))
+        if best is None and len(nearby) == 1:
+            best, best_rows = nearby[0]
+            current = in_rows(current, current.frames < out[best].frames[best_rows][0])
         if best is None:
             slot += 1
             continue

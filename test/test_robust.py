@@ -1320,24 +1320,25 @@ def test_a_track_that_takes_over_after_travelling_with_another_object_is_appende
 
 
 def test_a_track_that_starts_beside_a_wandering_end_takes_over_when_it_is_the_only_one() -> None:
-    """Track 1 follows an object moving right until frame 50, then wanders on to the right and
-    up (its boxes between look-alikes) until it ends at frame 59, while its object turned back
-    at frame 50. Track 2 starts at frame 55 on the object, 36 px from track 1's last box, and
-    goes left: far from where track 1's line points. It is the only track near that last box,
-    so it takes over: track 1 keeps its frames before 55 and track 2's boxes from there. With
-    a second such track beside the first, neither takes over."""
+    """Track 1 follows an object moving right until frame 50; its object then turns back, while
+    track 1 stays at x 200 and wanders down (its boxes between look-alikes, up to 85 px off the
+    object) and back up until it ends at frame 59, 36 px from track 2's first box after that.
+    Track 2 starts at frame 55 on the object and goes left: far from where track 1's line points.
+    It is the only track near that last box, so it takes over: track 1 loses its wandering
+    frames (52-54, more than 40 px off track 2's line extended back) and takes track 2's boxes
+    from 55. With a second such track beside the first, neither takes over."""
     from trap_core.robust import join_handovers
     frames = np.arange(100)
     x = np.where(frames <= 50, 100 + 2 * frames, 200 - 2 * (frames - 50)).astype(float)
     boxes = np.column_stack([x, np.full(100, 170.0), np.full(100, 40.0), np.full(100, 30.0)])
     wandering = boxes[:60] + [0.0, 30.0, 0.0, 0.0]
-    wandering[51:, 0] = 200 + np.arange(1, 10)
-    wandering[51:, 1] = 200 - np.arange(1, 10)
+    wandering[51:, 0] = 200.0
+    wandering[51:, 1] = 200.0 + np.array([6, 50, 55, 55, 50, 40, 30, 20, 0])
     tracks = [_as_track(1, frames[:60], wandering), _as_track(2, frames[55:], boxes[55:])]
     out = join_handovers(tracks, 100, 12, 40.0)
     assert len(out) == 1
-    assert out[0].frames.tolist() == list(range(100))
-    np.testing.assert_allclose(out[0].boxes[55:], boxes[55:])
+    assert out[0].frames.tolist() == list(range(52)) + list(range(55, 100))
+    np.testing.assert_allclose(out[0].boxes[52:], boxes[55:])
     beside = boxes[55:] + [0.0, 15.0, 0.0, 0.0]
     assert len(join_handovers(tracks + [_as_track(3, frames[55:], beside)], 100, 12, 40.0)) == 3
 

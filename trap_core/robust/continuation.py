@@ -116,8 +116,10 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
     Where no track is that close to the motion, the one track whose first counted box is at most
     ``reach`` px from the earlier track's last box takes over: where the object turned as it met
     a look-alike, the earlier track's last boxes wander between the two and their line points
-    nowhere. The earlier track then ends where the later one starts, whose boxes (but those on a
-    third track's object) are appended from there. Ids are renumbered 1.. in order.
+    nowhere. The earlier track then ends where its wandering began: of its last ``window`` frames
+    before the later one starts, those after the last box within ``reach`` of the later track's
+    line (through its first ``window`` centres, extended back) go. The later track's boxes (but
+    those on a third track's object) are appended from its start. Ids are renumbered 1.. in order.
     """
     out = list(tracks)
     slot = 0
@@ -153,7 +155,8 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
                 nearby.append((other, own))
         if best is None and len(nearby) == 1:
             best, best_rows = nearby[0]
-            current = in_rows(current, current.frames < out[best].frames[best_rows][0])
+            current = in_rows(current, current.frames < _wandering_from(current, in_rows(out[best], best_rows),
+                                                                         window, reach))
         if best is None:
             slot += 1
             continue
@@ -248,6 +251,24 @@ def _menders(boxes: np.ndarray, slot: int, stretch_ends: tuple[int, int], summar
 def _within(points: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     """Whether each point lies in its box (``(x, y, w, h)``, broadcast); False where the box is NaN."""
     return np.all((points >= boxes[..., :2]) & (points <= boxes[..., :2] + boxes[..., 2:4]), axis=-1)
+
+
+def _wandering_from(ending: Track, later: Track, window: int, reach: float) -> int:
+    """First frame of the ``ending`` track's wandering tail before ``later`` starts: the frames
+    (at most ``window`` of them) just before that start whose box centres lie more than ``reach``
+    px from the straight line through the later track's first ``window`` centres, extended back."""
+    start = int(later.frames[0])
+    line = straight_line(centre_path(later, max(int(later.frames[-1]) + 1, start + window)),
+                         np.arange(start, start + window))
+    if line is None:
+        return start
+    velocity, origin = line
+    before = np.flatnonzero((ending.frames < start) & (ending.frames >= start - window))[::-1]
+    off = np.linalg.norm(box_centres(ending.boxes[before]) - (origin + velocity * ending.frames[before][:, None]),
+                         axis=1) > reach
+    kept = np.flatnonzero(~off)  # the first box (going back) near the line ends the tail
+    tail = before[:kept[0]] if kept.size else before
+    return int(ending.frames[tail[-1]]) if tail.size else start
 
 
 def _motion_at(track: Track, end: int, window: int) -> tuple[np.ndarray, np.ndarray] | None:

@@ -1187,6 +1187,27 @@ def test_lookalikes_travelling_together_keep_their_tracks_when_the_motion_around
     np.testing.assert_allclose(out[1].boxes[away], q[away])
 
 
+def test_a_track_that_starts_late_is_continued_back_by_the_cluster_that_led_to_its_start() -> None:
+    """The track holds frames 40-99 of an object moving right; cluster 0 covers frames 0-37
+    where that motion, read back, puts the object; cluster 1 the same frames 185 px away.
+    Cluster 0's boxes are put before the track's start; cluster 1 alone gives nothing."""
+    from trap_core.clustering import summarise
+    from trap_core.robust import continue_tracks
+    t = np.arange(100, dtype=float)
+    boxes = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    centres = boxes[:, :2] + boxes[:, 2:4] / 2
+    paths = _paths([(0, centres[:38]), (0, centres[:38] + [0.0, 185.0])])
+    summary = summarise(np.array([0, 1]), paths, np.ones(2), 100)
+    built = {0: _as_track(0, np.arange(38), boxes[:38]),
+             1: _as_track(0, np.arange(38), boxes[:38] + [0.0, 185.0, 0.0, 0.0])}
+    late = _as_track(1, np.arange(40, 100), boxes[40:])
+    out = continue_tracks([late], summary, np.array([0, 1]), 100, 640, 480, 12, 40.0, built.__getitem__)
+    assert out[0].frames.tolist() == list(range(38)) + list(range(40, 100))
+    np.testing.assert_allclose(out[0].boxes[:38], boxes[:38])
+    assert len(continue_tracks([late], summary, np.array([1]), 100, 640, 480, 12, 40.0,
+                               built.__getitem__)[0]) == 60
+
+
 def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_ended() -> None:
     """The track holds frames 0-59 of an object moving right; cluster 0 goes on from frame 62
     where that motion puts it, cluster 1 starts at the same time 185 px away, cluster 2 goes on

@@ -5,7 +5,9 @@ object; :func:`trap_core.robust.drop_shared_stretches` then ends its track there
 own patterns after the meeting often make a cluster of their own that starts where the track
 ended but is too short to be selected, and overlaps the track's cluster in time too much to be
 rejoined to it. :func:`continue_tracks` appends it, after the track's last frame or in a gap
-between two of its pieces (where a stretch on another object was dropped from the middle).
+between two of its pieces (where a stretch on another object was dropped from the middle); and
+the same way back in time, before a track's first frame, where the object's first patterns made
+such a cluster.
 
 When such a cluster was long enough to be selected, the object's path after the meeting is a
 track of its own, often starting on the other object (for as long as the two are in one place,
@@ -35,7 +37,9 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
                     width: float, height: float, window: int, reach: float, build: Callable[[int], Track],
                     min_iou: float = 0.5) -> list[Track]:
     """Tracks whose pieces that end more than ``window`` frames before the track's next one (or
-    the video's end) are each continued by at most one of the clusters ``candidates``.
+    the video's end) are each continued by at most one of the clusters ``candidates``; then,
+    the same way back in time, pieces that start more than ``window`` frames after the track's
+    previous one (or the video's start).
 
     A candidate continues a piece if it covers at least ``window`` frames after the piece's last
     one and before the next piece, the first of them at most ``window`` frames after it, and
@@ -46,52 +50,64 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     other: boxes around an object tracked already). A candidate continues one piece only. Where
     the piece's last box reaches the border of the ``width`` x ``height`` frames (its object is
     leaving), the candidate's first box appended must reach it too: one that starts clear of the
-    border is something else the patterns found once the object was gone.
+    border is something else the patterns found once the object was gone. Back in time, read
+    first for last: a track whose cluster began late (its object's first patterns went to a
+    cluster too short to be selected) gets that cluster's boxes before its start.
     """
     out = list(tracks)
     taken: set[int] = set()
     for slot in range(len(out)):
-        bounds = np.append(out[slot].frames, n_frames)  # the track's frames, then the video's end
-        ends = np.flatnonzero(np.diff(bounds) > window)
-        for end, resume in zip(bounds[ends].tolist(), bounds[ends + 1].tolist()):
-            found = _continuation(out, slot, (end, resume), summary, candidates, taken, (width, height),
-                                  window, reach, build, min_iou)
-            if found is not None:
-                follow, cluster = found
-                out[slot] = with_frames(out[slot], follow.frames, follow.boxes, follow.score, follow.points)
-                taken.add(cluster)
+        for backward in (False, True):
+            frames = out[slot].frames
+            # (the piece's edge frame, the track's other piece or the video's end beyond the gap)
+            bounds = np.r_[-1, frames] if backward else np.append(frames, n_frames)
+            gaps = np.flatnonzero(np.diff(bounds) > window)
+            edges = bounds[gaps + 1] if backward else bounds[gaps]
+            limits = bounds[gaps] if backward else bounds[gaps + 1]
+            for edge, limit in zip(edges.tolist(), limits.tolist()):
+                found = _continuation(out, slot, edge, limit, summary, candidates, taken, (width, height),
+                                      window, reach, build, min_iou)
+                if found is not None:
+                    follow, cluster = found
+                    out[slot] = with_frames(out[slot], follow.frames, follow.boxes, follow.score, follow.points)
+                    taken.add(cluster)
     return out
 
 
-def _continuation(tracks: list[Track], slot: int, between: tuple[int, int], summary: ClusterSummary,
+def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary: ClusterSummary,
                   candidates: np.ndarray, taken: set[int], view: tuple[float, float], window: int, reach: float,
                   build: Callable[[int], Track], min_iou: float) -> tuple[Track, int] | None:
-    """The boxes of the closest candidate that continues track ``slot``'s piece ending at the
-    first frame of ``between`` up to (not including) its second, and that candidate; None if
-    none does (see :func:`continue_tracks`)."""
-    end, resume = between
+    """The boxes of the closest candidate that continues track ``slot``'s piece beyond its
+    frame ``edge`` up to (not including) frame ``limit`` (after its last frame; before its
+    first where ``limit < edge``), and that candidate; None if none does (see
+    :func:`continue_tracks`)."""
+    backward = limit < edge
     current = tracks[slot]
-    line = _motion_at(current, end, window)
+    own = np.arange(edge, edge + window) if backward else np.arange(max(edge + 1 - window, 0), edge + 1)
+    line = straight_line(centre_path(current, max(int(current.frames[-1]) + 1, edge + window)), own)
     if line is None:
         return None
     velocity, origin = line
+    lo, hi = (limit + 1, edge) if backward else (edge + 1, limit)
     near = []
     for cluster in candidates.tolist():
-        after = np.flatnonzero(summary.covered[cluster, end + 1:resume]) + end + 1
-        if cluster in taken or after.size < window or after[0] > end + window:
+        covered = np.flatnonzero(summary.covered[cluster, lo:hi]) + lo
+        if cluster in taken or covered.size < window:
             continue
-        position = summary.paths.at(cluster, after[0])
-        error = float(np.linalg.norm(position - (origin + velocity * after[0])))
+        nearest = int(covered[-1] if backward else covered[0])
+        if abs(nearest - edge) > window:
+            continue
+        error = float(np.linalg.norm(summary.paths.at(cluster, nearest) - (origin + velocity * nearest)))
         if error <= reach:
             near.append((error, cluster))
-    last = current.boxes[current.frames == end]
-    leaving = reaches_border(last, *view)[0]
+    crossing = reaches_border(current.boxes[current.frames == edge], *view)[0]
     others = [t for k, t in enumerate(tracks) if k != slot]
     for _, cluster in sorted(near):
         follow = build(cluster)
-        follow = in_rows(follow, (follow.frames > end) & (follow.frames < resume))
+        follow = in_rows(follow, (follow.frames >= lo) & (follow.frames < hi))
         follow = in_rows(follow, ~repeats_others(follow, others, min_iou, centred=True))
-        if leaving and not (len(follow) and reaches_border(follow.boxes[:1], *view)[0]):
+        if crossing and not (len(follow) and reaches_border(follow.boxes[-1:] if backward else follow.boxes[:1],
+                                                            *view)[0]):
             continue
         return follow, cluster
     return None

@@ -84,6 +84,32 @@ def test_camera_motion_is_what_the_frame_agrees_on_even_where_an_object_has_more
     np.testing.assert_allclose(transforms[:, :2, 2], pan, atol=1e-3)
 
 
+def test_the_camera_motion_over_a_backdrop_is_read_without_it() -> None:
+    """A pan over a plain photograph (one region covers most of the frame, and most faces hold
+    it): read from positions that average the backdrop in, the camera's motion over 8 frames is
+    off the true pan by a fifth of a pixel a frame or more half the time; with the backdrop left
+    out of the positions, by less than a tenth anywhere."""
+    from trap_core.clustering import observed_paths
+    from trap_core.pipeline import PatternMiner
+    from trap_core.robust import camera_paths
+    from trap_core.synthetic.scene import build_world
+    config = SceneConfig(width=640, height=480, frames=60, seed=11, background="coffee", exits=False)
+    params = TrapParams.from_mapping({"segmentation": "felzenszwalb"})
+    graphs, _ = synthetic_graphs(config, params)
+    assert max(g.area.max() / (640 * 480) for g in graphs) > 0.5  # the scene has a backdrop
+    miner = PatternMiner(params, len(graphs))
+    for graph in graphs:
+        miner.add(graph)
+    mined = miner.finish()
+    pan = build_world(config).camera.astype(float)
+
+    def errors(paths: ObservedPaths) -> np.ndarray:
+        shift = -camera_transforms(paths, len(graphs))[:, :2, 2]
+        return np.abs((shift[8:] - shift[:-8]) - (pan[8:] - pan[:-8])).max(axis=1) / 8
+    assert errors(camera_paths(mined, graphs)).max() < 0.1
+    assert np.median(errors(observed_paths(mined))) > 0.2
+
+
 def test_patterns_bunched_in_one_frame_give_no_degenerate_camera_motion() -> None:
     """Four patterns spread in frame 0 all sit on one point in frame 1: the similarity fit has
     scale 0. It is no camera motion; the frame gets the patterns' median step instead, and the

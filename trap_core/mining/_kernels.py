@@ -1,5 +1,6 @@
-"""Compiled kernels of the miner (numba, ``nogil``): inner faces, face-set enumeration,
-canonical codes, occurrence linking. :mod:`trap_core.mining.miner` drives them;
+"""Compiled kernels of the miner (numba, ``nogil``): inner faces, face-set enumeration, canonical
+codes, occurrence geometry (and positions without some regions, for the camera's motion),
+occurrence linking. :mod:`trap_core.mining.miner` drives them;
 :mod:`trap_core.mining.reference` is the readable version they are tested against.
 """
 from __future__ import annotations
@@ -278,6 +279,29 @@ def _grow_sets(hashes, sets, cap):
 
 
 @nb.njit(cache=True, nogil=True)
+def _set_nodes(face_set, he_origin, face_half_edges, face_offsets, left_out, nodes):
+    """The distinct nodes around one face set (face ids, -1 padded) but those ``left_out``
+    (nodes past its end are kept), written into ``nodes`` (a larger array is returned where it
+    is too small), and their count."""
+    n = 0
+    for i in range(face_set.size):
+        f = face_set[i]
+        if f < 0:
+            break
+        for a in range(face_offsets[f], face_offsets[f + 1]):
+            node = he_origin[face_half_edges[a]]
+            if (node < left_out.size and left_out[node]) or _in(nodes, n, node) >= 0:
+                continue
+            if n == nodes.size:
+                bigger = np.empty(2 * n, dtype=np.int64)
+                bigger[:n] = nodes
+                nodes = bigger
+            nodes[n] = node
+            n += 1
+    return nodes, n
+
+
+@nb.njit(cache=True, nogil=True)
 def occurrence_geometry(sets, he_origin, face_half_edges, face_offsets, centroid, bbox):
     """Per face set: mean barycentre of its distinct nodes, box of their regions, box of their
     barycentres (x0, y0, x1, y1), and node count."""
@@ -286,21 +310,9 @@ def occurrence_geometry(sets, he_origin, face_half_edges, face_offsets, centroid
     box = np.empty((count, 4), dtype=np.float64)
     node_box = np.empty((count, 4), dtype=np.float64)
     nodes = np.empty(64, dtype=np.int64)
+    keep_all = np.zeros(0, dtype=np.bool_)
     for r in range(count):
-        n = 0
-        for i in range(width):
-            f = sets[r, i]
-            if f < 0:
-                break
-            for a in range(face_offsets[f], face_offsets[f + 1]):
-                node = he_origin[face_half_edges[a]]
-                if _in(nodes, n, node) < 0:
-                    if n == nodes.size:
-                        bigger = np.empty(2 * n, dtype=np.int64)
-                        bigger[:n] = nodes
-                        nodes = bigger
-                    nodes[n] = node
-                    n += 1
+        nodes, n = _set_nodes(sets[r], he_origin, face_half_edges, face_offsets, keep_all, nodes)
         sx = sy = 0.0
         box[r, 0] = box[r, 1] = node_box[r, 0] = node_box[r, 1] = 1e18
         box[r, 2] = box[r, 3] = node_box[r, 2] = node_box[r, 3] = -1e18
@@ -320,6 +332,24 @@ def occurrence_geometry(sets, he_origin, face_half_edges, face_offsets, centroid
         position[r, 0] = sx / n
         position[r, 1] = sy / n
     return position, box, node_box
+
+
+@nb.njit(cache=True, nogil=True)
+def positions_without(sets, he_origin, face_half_edges, face_offsets, centroid, left_out):
+    """Per face set: mean barycentre of its distinct nodes but those ``left_out``; NaN where no
+    other node is there."""
+    position = np.full((sets.shape[0], 2), np.nan)
+    nodes = np.empty(64, dtype=np.int64)
+    for r in range(sets.shape[0]):
+        nodes, n = _set_nodes(sets[r], he_origin, face_half_edges, face_offsets, left_out, nodes)
+        if n:
+            sx = sy = 0.0
+            for k in range(n):
+                sx += centroid[nodes[k], 0]
+                sy += centroid[nodes[k], 1]
+            position[r, 0] = sx / n
+            position[r, 1] = sy / n
+    return position
 
 
 @nb.njit(cache=True, nogil=True)

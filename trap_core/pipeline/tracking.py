@@ -14,7 +14,7 @@ from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
-from trap_core.robust import (border_contacts, border_share, camera_transforms, cluster_world_speed,
+from trap_core.robust import (border_contacts, border_share, camera_paths, camera_transforms, cluster_world_speed,
                               continue_to_border, continue_tracks, drop_repeated_pieces, drop_shared_stretches,
                               drop_still_regions, drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes,
                               hand_to_owners, join_handovers, keep_one_size, lookalike_tracks, mend_shared_stretches,
@@ -61,7 +61,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     start = time.perf_counter()
     observed = observed_paths(mined)  # each pattern's mean position per frame: camera motion and trajectories
     clustered = np.arange(mined.n_st)
-    transforms = (camera_transforms(observed, n_frames)
+    transforms = (camera_transforms(camera_paths(mined, graphs), n_frames)
                   if robust and (params.min_speed > 0 or params.grow or params.still_regions) else None)
     still_below = params.min_speed * width  # px per frame
     if robust and params.min_speed > 0:

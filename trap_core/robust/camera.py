@@ -10,17 +10,55 @@ once (the median displacement of its patterns); the transform most cells agree o
 within ``AGREE_PX``) is refined by least median of squares on the patterns it fits. Chaining
 the transforms maps every frame into the first frame's coordinates ("world"). In the world,
 background patterns stand still and objects move.
+
+Over a plain scene (sky, sea, asphalt, a smooth photograph) one region, the backdrop, covers
+most of the frame, and most faces hold it. Its barycentre stays near the middle of the view
+wherever the camera goes, so positions that average it in move less than the scene does:
+:func:`camera_paths` leaves it out of the positions the transforms are fitted to.
 """
 from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
 
 import cv2
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, ObservedPaths
+from trap_core.clustering import ClusterSummary, ObservedPaths, observed_paths
+from trap_core.mining import MiningResult
+from trap_core.mining._kernels import positions_without
+from trap_core.rag import PlaneGraph
 
 GRID = 12  # cells per side of the frame, one vote each for the camera's motion
 AGREE_PX = 1.0  # a cell (a pattern) agrees with a camera motion that puts it within this
 MAX_ZOOM_STEP = 1.5  # no camera zooms by half between two frames: a fit that does is degenerate
+BACKDROP_SHARE = 0.5  # a region over this share of the frame is the backdrop: only one can be
+
+
+def camera_paths(result: MiningResult, graphs: Sequence[PlaneGraph]) -> ObservedPaths:
+    """Each pattern's mean position per frame (:func:`trap_core.clustering.observed_paths`), its
+    occurrences placed without the backdrop (a region over ``BACKDROP_SHARE`` of the frame) where
+    they hold other regions: the paths :func:`camera_transforms` is fitted to.
+
+    Over four photographs with a backdrop, the camera's motion read from positions with it was
+    0.36-0.96 px a frame off the true pan (median over 12-frame windows), and 0.00 without
+    it; over cells, where no region is that large, nothing changes. ``graphs[i]`` is the frame
+    of the occurrences with ``occ_frame == i``.
+    """
+    moved = result.occ_position.copy()
+    order = np.argsort(result.occ_frame, kind="stable")
+    bounds = np.searchsorted(result.occ_frame[order], np.arange(len(graphs) + 1))
+    for frame, graph in enumerate(graphs):
+        width, height = graph.frame_size
+        backdrop = graph.area > BACKDROP_SHARE * width * height
+        rows = order[bounds[frame]:bounds[frame + 1]]
+        if not backdrop.any() or rows.size == 0:
+            continue
+        placed = positions_without(result.occ_faces[rows], graph.he_origin, graph.face_half_edges,
+                                   graph.face_offsets, graph.centroid, backdrop)
+        found = ~np.isnan(placed[:, 0])
+        moved[rows[found]] = placed[found]
+    return observed_paths(dataclasses.replace(result, occ_position=moved))
 
 
 def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:

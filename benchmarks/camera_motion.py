@@ -56,7 +56,8 @@ def main() -> None:
             largest = max(float(g.area.max()) for g in graphs) / (width * height)
             pan = build_world(SceneConfig(**scene)).camera.astype(float)
             cells = []
-            for paths in (observed_paths(mined), camera_paths(mined, graphs)):
+            with_backdrop = observed_paths(mined)
+            for paths in (with_backdrop, camera_paths(mined, graphs, with_backdrop)):
                 errors = _errors(camera_transforms(paths, len(graphs)), pan)
                 cells.append(f"{np.median(errors):.2f} / {np.percentile(errors, 90):.2f}")
             print(f"| {set_name} | {label} | {largest:.2f} | {cells[0]} | {cells[1]} |", flush=True)

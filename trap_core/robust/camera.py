@@ -35,22 +35,25 @@ MAX_ZOOM_STEP = 1.5  # no camera zooms by half between two frames: a fit that do
 BACKDROP_SHARE = 0.5  # a region over this share of the frame is the backdrop: only one can be
 
 
-def camera_paths(result: MiningResult, graphs: Sequence[PlaneGraph]) -> ObservedPaths:
-    """Each pattern's mean position per frame (:func:`trap_core.clustering.observed_paths`), its
-    occurrences placed without the backdrop (a region over ``BACKDROP_SHARE`` of the frame) where
-    they hold other regions: the paths :func:`camera_transforms` is fitted to.
+def camera_paths(result: MiningResult, graphs: Sequence[PlaneGraph],
+                 observed: ObservedPaths) -> ObservedPaths:
+    """The patterns' ``observed`` paths (:func:`trap_core.clustering.observed_paths` of ``result``)
+    with their occurrences placed without the backdrop (a region over ``BACKDROP_SHARE`` of the
+    frame) where they hold other regions: the paths :func:`camera_transforms` is fitted to;
+    ``observed`` itself where no frame has a backdrop.
 
     Over four photographs with a backdrop, the camera's motion read from positions with it was
     0.36-0.96 px a frame off the true pan (median over 12-frame windows), and 0.00 without
     it; over cells, where no region is that large, nothing changes. ``graphs[i]`` is the frame
     of the occurrences with ``occ_frame == i``.
     """
+    backdrops = [graph.area > BACKDROP_SHARE * np.prod(graph.frame_size) for graph in graphs]
+    if not any(backdrop.any() for backdrop in backdrops):
+        return observed
     moved = result.occ_position.copy()
     order = np.argsort(result.occ_frame, kind="stable")
     bounds = np.searchsorted(result.occ_frame[order], np.arange(len(graphs) + 1))
-    for frame, graph in enumerate(graphs):
-        width, height = graph.frame_size
-        backdrop = graph.area > BACKDROP_SHARE * width * height
+    for frame, (graph, backdrop) in enumerate(zip(graphs, backdrops)):
         rows = order[bounds[frame]:bounds[frame + 1]]
         if not backdrop.any() or rows.size == 0:
             continue

@@ -83,8 +83,7 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
     :func:`continue_tracks`)."""
     backward = limit < edge
     current = tracks[slot]
-    own = np.arange(edge, edge + window) if backward else np.arange(max(edge + 1 - window, 0), edge + 1)
-    line = straight_line(centre_path(current, max(int(current.frames[-1]) + 1, edge + window)), own)
+    line = _line_through(current, np.arange(edge, edge + window)) if backward else _motion_at(current, edge, window)
     if line is None:
         return None
     velocity, origin = line
@@ -274,8 +273,7 @@ def _wandering_from(ending: Track, later: Track, window: int, reach: float) -> i
     (at most ``window`` of them) just before that start whose box centres lie more than ``reach``
     px from the straight line through the later track's first ``window`` centres, extended back."""
     start = int(later.frames[0])
-    line = straight_line(centre_path(later, max(int(later.frames[-1]) + 1, start + window)),
-                         np.arange(start, start + window))
+    line = _line_through(later, np.arange(start, start + window))
     if line is None:
         return start
     velocity, origin = line
@@ -288,6 +286,11 @@ def _wandering_from(ending: Track, later: Track, window: int, reach: float) -> i
 
 
 def _motion_at(track: Track, end: int, window: int) -> tuple[np.ndarray, np.ndarray] | None:
-    """Velocity and origin of the straight line through the track's box centres in the
-    ``window`` frames up to ``end`` (:func:`straight_line`), None where too few."""
-    return straight_line(centre_path(track, int(track.frames[-1]) + 1), np.arange(max(end + 1 - window, 0), end + 1))
+    """:func:`_line_through` the track's box centres in the ``window`` frames up to ``end``."""
+    return _line_through(track, np.arange(max(end + 1 - window, 0), end + 1))
+
+
+def _line_through(track: Track, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """Velocity and origin of the straight line through the track's box centres in ``frames``
+    (increasing; those without a box are skipped: :func:`straight_line`), None where too few."""
+    return straight_line(centre_path(track, max(int(track.frames[-1]), int(frames[-1])) + 1), frames)

@@ -4,8 +4,9 @@
 For each video of the chosen ``quality.py`` sets that only pans (no turn, no zoom: the
 synthetic camera path is then the truth), prints the median and 90th percentile over 12-frame
 windows of the error of the estimated pan, in px per frame, read from the patterns' positions
-as they are and without the backdrop (:func:`trap_core.robust.camera_paths`), and the share of
-the frame its largest region covers. 0.0012 image widths per frame (0.77 px at 640) is the
+as they are and as the tracker reads it (:func:`trap_core.robust.camera_paths`: patterns
+without the backdrop, and the regions matched from frame to frame), and the share of the frame
+its largest region covers. 0.0012 image widths per frame (0.77 px at 640) is the
 speed that makes background. Graphs come from ``quality.py``'s cache.
 Run: ``.venv/bin/python benchmarks/camera_motion.py [--sets photos,analogues]``.
 """
@@ -40,7 +41,7 @@ def main() -> None:
     parser.add_argument("--sets", default="photos,analogues")
     parser.add_argument("--cache", type=Path, default=Path.home() / ".cache/trap_ros/quality")
     args = parser.parse_args()
-    print("| set | video | largest region | error with backdrop, median / p90 | without, median / p90 |")
+    print("| set | video | largest region | patterns as they are, median / p90 | tracker, median / p90 |")
     print("|---|---|---|---|---|")
     for set_name in args.sets.split(","):
         for label, scene, segmentation in quality.SETS[set_name]:
@@ -57,7 +58,7 @@ def main() -> None:
             pan = build_world(SceneConfig(**scene)).camera.astype(float)
             cells = []
             with_backdrop = observed_paths(mined)
-            for paths in (with_backdrop, camera_paths(mined, graphs, with_backdrop)):
+            for paths in (with_backdrop, camera_paths(mined, graphs, with_backdrop, params.eps)):
                 errors = _errors(camera_transforms(paths, len(graphs)), pan)
                 cells.append(f"{np.median(errors):.2f} / {np.percentile(errors, 90):.2f}")
             print(f"| {set_name} | {label} | {largest:.2f} | {cells[0]} | {cells[1]} |", flush=True)

@@ -61,7 +61,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     start = time.perf_counter()
     observed = observed_paths(mined)  # each pattern's mean position per frame: speeds and trajectories
     clustered = np.arange(mined.n_st)
-    transforms = (camera_transforms(camera_paths(mined, graphs, observed), n_frames)
+    transforms = (camera_transforms(camera_paths(mined, graphs, observed, params.eps), n_frames)
                   if robust and (params.min_speed > 0 or params.grow or params.still_regions) else None)
     still_below = params.min_speed * width  # px per frame
     if robust and params.min_speed > 0:

@@ -1,4 +1,5 @@
-"""Compiled kernel of the grown track boxes (numba, ``nogil``): which regions move with a track."""
+"""Compiled kernels (numba, ``nogil``) of the grown track boxes (which regions move with a track)
+and of the camera's motion (which regions of two consecutive frames are one)."""
 from __future__ import annotations
 
 import numba as nb
@@ -44,3 +45,44 @@ def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
             with_camera = min(with_camera, np.hypot(other_centroid[j, 0] - kx, other_centroid[j, 1] - ky))
         found[i] = with_track <= tolerance * np.sqrt(area[i]) + 1 and with_track < with_camera / 2
     return found
+
+
+@nb.njit(cache=True, nogil=True)
+def matched_regions(centroid: np.ndarray, area: np.ndarray, label: np.ndarray, next_centroid: np.ndarray,
+                    next_area: np.ndarray, next_label: np.ndarray, reach: float,
+                    max_ratio: float) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs (rows of the first frame's regions, rows of the next's) of regions of one label,
+    areas within ``max_ratio`` of each other, each the other's nearest such within ``reach`` px."""
+    n, m = centroid.shape[0], next_centroid.shape[0]
+    best_next = np.full(n, -1, dtype=np.int64)
+    best_next_distance = np.full(n, np.inf)
+    best_here = np.full(m, -1, dtype=np.int64)
+    best_here_distance = np.full(m, np.inf)
+    for i in range(n):
+        for j in range(m):
+            if label[i] != next_label[j] or area[i] > max_ratio * next_area[j] or next_area[j] > max_ratio * area[i]:
+                continue
+            dx = centroid[i, 0] - next_centroid[j, 0]
+            dy = centroid[i, 1] - next_centroid[j, 1]
+            distance = np.sqrt(dx * dx + dy * dy)
+            if distance > reach:
+                continue
+            if distance < best_next_distance[i]:
+                best_next_distance[i] = distance
+                best_next[i] = j
+            if distance < best_here_distance[j]:
+                best_here_distance[j] = distance
+                best_here[j] = i
+    count = 0
+    for i in range(n):
+        if best_next[i] >= 0 and best_here[best_next[i]] == i:
+            count += 1
+    rows = np.empty(count, dtype=np.int64)
+    next_rows = np.empty(count, dtype=np.int64)
+    k = 0
+    for i in range(n):
+        if best_next[i] >= 0 and best_here[best_next[i]] == i:
+            rows[k] = i
+            next_rows[k] = best_next[i]
+            k += 1
+    return rows, next_rows

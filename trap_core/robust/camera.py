@@ -30,13 +30,14 @@ import numpy as np
 from trap_core.clustering import ClusterSummary, ObservedPaths, observed_paths
 from trap_core.mining import MiningResult
 from trap_core.mining._kernels import positions_without
+from trap_core.robust._kernels import matched_regions
 from trap_core.rag import PlaneGraph
 
 GRID = 12  # cells per side of the frame, one vote each for the camera's motion
 AGREE_PX = 1.0  # a cell (a pattern) agrees with a camera motion that puts it within this
 MAX_ZOOM_STEP = 1.5  # no camera zooms by half between two frames: a fit that does is degenerate
 BACKDROP_SHARE = 0.5  # a region over this share of the frame is the backdrop: only one can be
-AREA_RATIO = 1.5  # a region matched in the next frame has at most this ratio of areas to its match
+MATCH_AREA_RATIO = 1.5  # a region matched in the next frame has at most this ratio of areas to its match
 
 
 def camera_paths(result: MiningResult, graphs: Sequence[PlaneGraph], observed: ObservedPaths,
@@ -88,7 +89,7 @@ def _region_steps(graphs: Sequence[PlaneGraph], backdrops: list[np.ndarray], rea
     """Regions matched between consecutive frames, each pair a two-frame path with ids from
     ``first_id``: of the regions that are not the backdrop and do not reach the image's edge
     (their barycentres move with the crop), two of one colour label whose areas differ by at
-    most ``AREA_RATIO``, each the other's nearest such within ``reach`` px.
+    most ``MATCH_AREA_RATIO``, each the other's nearest such within ``reach`` px.
 
     Unlike frequent patterns, every region of the background votes, however plain the scene;
     regions matched wrongly, and those of the objects, are outliers to the fit."""
@@ -100,18 +101,14 @@ def _region_steps(graphs: Sequence[PlaneGraph], backdrops: list[np.ndarray], rea
         if here.size == 0 or there.size == 0:
             continue
         a, b = graphs[t], graphs[t + 1]
-        start, end = a.centroid[here].astype(float), b.centroid[there].astype(float)
-        distance = np.linalg.norm(start[:, None] - end[None], axis=2)
-        ratio = a.area[here][:, None] / b.area[there][None].astype(float)
-        distance[(a.label[here][:, None] != b.label[there][None]) | (ratio > AREA_RATIO) | (ratio < 1 / AREA_RATIO)
-                 | (distance > reach)] = np.inf
-        forward, backward = distance.argmin(axis=1), distance.argmin(axis=0)
-        rows = np.arange(here.size)
-        rows = rows[(backward[forward] == rows) & np.isfinite(distance[rows, forward])]
+        rows, next_rows = matched_regions(a.centroid[here].astype(np.float64), a.area[here].astype(np.float64),
+                                          a.label[here], b.centroid[there].astype(np.float64),
+                                          b.area[there].astype(np.float64), b.label[there], float(reach),
+                                          MATCH_AREA_RATIO)
         pattern.append(np.repeat(next_id + np.arange(rows.size), 2))
         next_id += rows.size
         frame.append(np.tile([t, t + 1], rows.size))
-        position.append(np.stack([start[rows], end[forward[rows]]], axis=1).reshape(-1, 2))
+        position.append(np.stack([a.centroid[here[rows]], b.centroid[there[next_rows]]], axis=1).reshape(-1, 2))
     if not pattern:
         return ObservedPaths(np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros((0, 2)))
     return ObservedPaths(np.concatenate(pattern), np.concatenate(frame).astype(np.int64), np.concatenate(position))

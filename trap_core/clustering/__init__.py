@@ -6,7 +6,7 @@ from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns
 from trap_core.clustering.selection import ClusterSummary, select_clusters, summarise, twin_clusters
 from trap_core.clustering.tracks import (Track, box_centres, box_containment, box_iou, box_path, build_track,
                                         centre_inside, centre_path, centre_steps, core_regions, frame_face_sets, in_rows,
-                                        one_place, track_pieces, usual_size, with_frames)
+                                        one_place, reaches_border, track_pieces, usual_size, with_frames)
 from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
 
 __all__ = [
@@ -33,6 +33,7 @@ __all__ = [
     "lifetime_cut",
     "observed_paths",
     "one_place",
+    "reaches_border",
     "pattern_distances",
     "select_clusters",
     "summarise",

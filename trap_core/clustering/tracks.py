@@ -115,6 +115,13 @@ def centre_inside(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.all((centre >= large[..., :2]) & (centre <= large[..., :2] + large[..., 2:4]), axis=-1)
 
 
+def reaches_border(boxes: np.ndarray, width: float, height: float, margin: float = 0.25) -> np.ndarray:
+    """Whether boxes ``(x, y, w, h)`` (N, 4) come within ``margin`` times their own size of the
+    image border: the object is entering or leaving the view."""
+    x, y, w, h = np.asarray(boxes, dtype=float).T
+    return (x <= margin * w) | (y <= margin * h) | (x + w >= width - margin * w) | (y + h >= height - margin * h)
+
+
 def _intersection(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``a`` and ``b`` as float arrays, and the area their boxes share (broadcast)."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)

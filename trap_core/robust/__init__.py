@@ -1,6 +1,7 @@
 """Beyond the paper: camera-motion compensation, object/background split, fragment rejoining,
 track boxes without the background and where objects meet."""
 
+from trap_core.clustering import reaches_border
 from trap_core.robust.borders import continue_to_border, end_at_exits
 from trap_core.robust.camera import camera_paths, camera_transforms, cluster_world_speed, world_speed
 from trap_core.robust.continuation import continue_tracks, join_handovers, mend_shared_stretches
@@ -11,7 +12,7 @@ from trap_core.robust.gaps import fill_gaps
 from trap_core.robust.groups import separate_groups
 from trap_core.robust.mixed import pattern_sizes, split_mixed
 from trap_core.robust.owners import hand_to_owners
-from trap_core.robust.rejoin import BorderContacts, border_contacts, border_share, reaches_border, rejoin_fragments
+from trap_core.robust.rejoin import BorderContacts, border_contacts, border_share, rejoin_fragments
 from trap_core.robust.sizes import keep_one_size
 from trap_core.robust.still import drop_still_regions
 from trap_core.robust.strays import drop_strays

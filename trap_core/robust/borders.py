@@ -15,9 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from trap_core.clustering import Track, box_centres, in_rows
+from trap_core.clustering import Track, box_centres, in_rows, reaches_border
 from trap_core.robust.gaps import with_inferred
-from trap_core.robust.rejoin import reaches_border
 
 SIZE_RATIO = 1.25  # a box in view this much smaller than the track's usual one may be of a cut part
 

@@ -27,7 +27,7 @@ from collections.abc import Sequence
 import cv2
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, ObservedPaths, observed_paths
+from trap_core.clustering import ClusterSummary, ObservedPaths, observed_paths, reaches_border
 from trap_core.mining import MiningResult
 from trap_core.mining._kernels import positions_without
 from trap_core.robust._kernels import matched_regions
@@ -116,10 +116,9 @@ def _region_steps(graphs: Sequence[PlaneGraph], backdrops: list[np.ndarray], rea
 
 def _inner_regions(graph: PlaneGraph, backdrop: np.ndarray) -> np.ndarray:
     """Regions of ``graph`` that are not the backdrop and do not reach the image's edge."""
-    width, height = graph.frame_size
-    box = graph.bbox
-    inside = (box[:, 0] > 0) & (box[:, 1] > 0) & (box[:, 2] < width - 1) & (box[:, 3] < height - 1)
-    return np.flatnonzero(inside & ~backdrop)
+    corner = graph.bbox[:, :2]
+    cut = reaches_border(np.column_stack([corner, graph.bbox[:, 2:] - corner + 1]), *graph.frame_size, margin=0.0)
+    return np.flatnonzero(~cut & ~backdrop)
 
 
 def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:

@@ -27,10 +27,9 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from trap_core.clustering import (ClusterSummary, Track, box_centres, box_iou, box_path, centre_path, in_rows,
-                                  with_frames)
+                                  reaches_border, with_frames)
 from trap_core.robust.duplicates import repeats_others, same_boxes, shared_stretches
 from trap_core.robust.motion import straight_line
-from trap_core.robust.rejoin import reaches_border
 
 
 def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates: np.ndarray, n_frames: int,

@@ -28,8 +28,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from trap_core.clustering import (Track, box_centres, box_containment, box_iou, box_path, centre_inside, in_rows,
-                                  track_pieces, with_frames)
-from trap_core.robust.rejoin import reaches_border
+                                  reaches_border, track_pieces, with_frames)
 
 TURN = 0.1  # a velocity change of this share of the box size per frame is a turn, not jitter
 HOLE = 3  # frames in a row where jitter may part two boxes that hold the same object

@@ -34,8 +34,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, box_centres, box_containment, track_pieces
-from trap_core.robust.rejoin import reaches_border
+from trap_core.clustering import Track, box_centres, box_containment, reaches_border, track_pieces
 
 GROUPED = 0.5  # share of the smaller box inside the other: the two boxes hold the same regions
 HOLDS_MORE = 1.1  # a box this much wider or taller than its usual size holds more than its object

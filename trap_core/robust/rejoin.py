@@ -30,7 +30,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy import sparse
 
-from trap_core.clustering import ClusterSummary, Trajectories, summarise
+from trap_core.clustering import ClusterSummary, Trajectories, reaches_border, summarise
 from trap_core.mining import MiningResult
 from trap_core.robust.camera import map_points
 
@@ -306,9 +306,3 @@ def _occurrences_reach_border(result: MiningResult, rows: np.ndarray, width: flo
     corner = box[:, :2] if shift is None else box[:, :2] + shift
     return reaches_border(np.column_stack([corner, box[:, 2:] - box[:, :2] + 1]), width, height, margin)
 
-
-def reaches_border(boxes: np.ndarray, width: float, height: float, margin: float = 0.25) -> np.ndarray:
-    """Whether boxes ``(x, y, w, h)`` (N, 4) come within ``margin`` times their own size of the
-    image border: the object is entering or leaving the view."""
-    x, y, w, h = np.asarray(boxes, dtype=float).T
-    return (x <= margin * w) | (y <= margin * h) | (x + w >= width - margin * w) | (y + h >= height - margin * h)

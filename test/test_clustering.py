@@ -167,3 +167,21 @@ def test_centre_inside_takes_the_smaller_boxs_centre_in_the_larger() -> None:
     assert not centre_inside(far, large) and not centre_inside(large, far)
     assert centre_inside(np.array([near, far]), large).tolist() == [True, False]
     assert not centre_inside(np.full(4, np.nan), large)
+
+
+def test_sets_sharing_a_node_are_one_component() -> None:
+    """The compiled union of node sets groups them as a graph's connected components do."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    from trap_core.clustering._kernels import sharing_components
+    rng = np.random.default_rng(2)
+    for _ in range(50):
+        sets = [np.unique(rng.integers(0, 30, size=rng.integers(1, 4))) for _ in range(rng.integers(1, 12))]
+        nodes, ends = np.concatenate(sets), np.cumsum([s.size for s in sets])
+        holder = np.repeat(np.arange(len(sets)), [s.size for s in sets])
+        incidence = csr_matrix((np.ones(nodes.size), (holder, nodes)), shape=(len(sets), 30))
+        _, expected = connected_components(incidence @ incidence.T, directed=False)
+        found = sharing_components(nodes, ends, 30)
+        assert found.max() == expected.max()
+        assert np.array_equal(found[:, None] == found, expected[:, None] == expected)

@@ -312,3 +312,20 @@ def test_a_first_frame_of_few_felzenszwalb_regions_gets_a_warning(textured_frame
     assert first_frame_setup(textured_frames[0], params) == (params, [])
     plain = np.full((120, 160, 3), 90, np.uint8)
     assert "the first frame has only 1 region at k 7:" in first_frame_setup(plain, params)[1][0]
+
+
+def test_occurrences_nodes_in_one_pass_are_the_faces_nodes_one_by_one() -> None:
+    """The compiled pass over many face sets gives each set the distinct nodes around its
+    faces (padding skipped), as the faces' own traversals do."""
+    frame = next(iter(render(SceneConfig(width=160, height=120, frames=1, seed=3))))
+    graph = build_plane_graph(*colour_components(frame.rgb), frame.rgb)
+    rng = np.random.default_rng(0)
+    face_sets = np.full((40, 5), -1, dtype=np.int64)
+    for row in face_sets:
+        n = rng.integers(1, 6)
+        row[:n] = rng.choice(graph.n_faces, size=n, replace=False)
+    nodes, ends = graph.sets_nodes(face_sets)
+    for row, (start, end) in zip(face_sets, zip(np.r_[0, ends[:-1]], ends)):
+        expected = np.unique(np.concatenate([graph.face_nodes(f) for f in row if f >= 0]))
+        assert np.array_equal(nodes[start:end], expected)
+    assert np.array_equal(graph.faces_nodes(frozenset(face_sets[0][face_sets[0] >= 0].tolist())), nodes[:ends[0]])

@@ -34,3 +34,36 @@ def pairwise_distance(start: np.ndarray, end: np.ndarray, offsets: np.ndarray, p
                 out[k] = total / (fe - fs + 1) * (2.0 - overlap)
             k += 1
     return out
+
+
+@nb.njit(cache=True, nogil=True)
+def _root(parent: np.ndarray, item: int) -> int:
+    while parent[item] != item:
+        parent[item] = parent[parent[item]]
+        item = parent[item]
+    return item
+
+
+@nb.njit(cache=True, nogil=True)
+def sharing_components(nodes: np.ndarray, ends: np.ndarray, n_nodes: int) -> np.ndarray:
+    """Component (numbered 0.. in the order of each one's root set) of each set of nodes (set
+    ``i`` is ``nodes[ends[i - 1]:ends[i]]``), sets that share a node being linked: the places
+    of one frame's occurrences (:func:`trap_core.clustering.one_place`)."""
+    n_sets = ends.size
+    first_holder = np.full(n_nodes, -1, dtype=np.int64)
+    parent = np.arange(n_sets)
+    start = 0
+    for item in range(n_sets):
+        for j in range(start, ends[item]):
+            node = nodes[j]
+            if first_holder[node] < 0:
+                first_holder[node] = item
+            parent[_root(parent, item)] = _root(parent, first_holder[node])
+        start = ends[item]
+    is_root = np.zeros(n_sets, dtype=np.int64)
+    roots = np.empty(n_sets, dtype=np.int64)
+    for item in range(n_sets):
+        roots[item] = _root(parent, item)
+        is_root[roots[item]] = 1
+    number = np.cumsum(is_root) - 1
+    return number[roots]

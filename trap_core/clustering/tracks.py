@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from trap_core.clustering._kernels import sharing_components
 from trap_core.mining import MiningResult
 from trap_core.rag import PlaneGraph
 
@@ -191,7 +192,9 @@ def core_regions(graph: PlaneGraph, face_sets: np.ndarray, share: float,
     Only the occurrences in the track's place count (:func:`one_place`): where the cluster is
     in two places at once, the one of its longest-lived patterns (``lifetimes``).
     """
-    return _most_held(one_place(graph, [graph.faces_nodes(faces) for faces in face_sets], lifetimes, share), share)
+    nodes, ends = graph.sets_nodes(face_sets)
+    kept = _place_kept(graph, nodes, ends, lifetimes, share)
+    return _most_held(nodes if kept is None else nodes[np.repeat(kept, np.diff(ends, prepend=0))], share)
 
 
 def one_place(graph: PlaneGraph, node_sets: list[np.ndarray], lifetimes: np.ndarray,
@@ -206,28 +209,33 @@ def one_place(graph: PlaneGraph, node_sets: list[np.ndarray], lifetimes: np.ndar
     the track's, since a track's own long patterns outweigh a few short ones elsewhere, however
     many those are in the frame.
     """
-    first_holder: dict[int, int] = {}
-    shared = [(item, first_holder.setdefault(node, item))
-              for item, nodes in enumerate(node_sets) for node in nodes.tolist()]
-    place = _components(len(node_sets), shared)
+    kept = _place_kept(graph, np.concatenate(node_sets), np.cumsum([n.size for n in node_sets]), lifetimes, share)
+    return node_sets if kept is None else [nodes for nodes, keep in zip(node_sets, kept) if keep]
+
+
+def _place_kept(graph: PlaneGraph, nodes: np.ndarray, ends: np.ndarray, lifetimes: np.ndarray,
+                share: float) -> np.ndarray | None:
+    """Mask of the node sets (``nodes[ends[i - 1]:ends[i]]``) in the track's place, None where
+    all are (:func:`one_place`)."""
+    place = sharing_components(nodes, ends, graph.n_nodes + 1)
     if place.max() == 0:
-        return node_sets
-    members = [np.flatnonzero(place == p) for p in range(place.max() + 1)]
-    boxes = np.array([graph.nodes_box(_most_held([node_sets[i] for i in items], share)[0]) for items in members])
-    near = [(a, b) for a in range(len(members)) for b in range(a + 1, len(members))
+        return None
+    sizes = np.diff(ends, prepend=0)
+    boxes = np.array([graph.nodes_box(_most_held(nodes[np.repeat(place == p, sizes)], share)[0])
+                      for p in range(place.max() + 1)])
+    near = [(a, b) for a in range(len(boxes)) for b in range(a + 1, len(boxes))
             if _gap(boxes[a], boxes[b]) < min(boxes[a, 2:].max(), boxes[b, 2:].max()) / 2]
-    place = _components(len(members), near)[place]
+    place = _components(len(boxes), near)[place]
     if place.max() == 0:
-        return node_sets
-    heaviest = int(np.argmax(np.bincount(place, weights=lifetimes)))
-    return [nodes for nodes, where in zip(node_sets, place) if where == heaviest]
+        return None
+    return place == int(np.argmax(np.bincount(place, weights=lifetimes)))
 
 
-def _most_held(node_sets: list[np.ndarray], share: float) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes held by at least ``share`` of ``node_sets`` as many as the most held one, and those
-    most held (each set's nodes are distinct)."""
-    nodes, seen = np.unique(np.concatenate(node_sets), return_counts=True)
-    return nodes[seen >= share * seen.max()], nodes[seen == seen.max()]
+def _most_held(nodes: np.ndarray, share: float) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes held by at least ``share`` of the node sets ``nodes`` come from (one after the
+    other, each set's distinct) as many as the most held one, and those most held."""
+    seen = np.bincount(nodes)
+    return np.flatnonzero(seen >= max(share * seen.max(), 1)), np.flatnonzero(seen == seen.max())
 
 
 def _gap(a: np.ndarray, b: np.ndarray) -> float:

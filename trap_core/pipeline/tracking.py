@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -101,9 +101,16 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         all_labels = hand_to_owners(mined, all_labels, selected, graphs)
     lag = max(1, params.tau // 5)  # frames either side where a region is looked for again
 
+    built_tracks: dict[int, Track] = {}  # per cluster: rules look at the same clusters' tracks again
+
     def track_of(cluster: int, track_id: int) -> Track:
-        """The cluster's boxes, with the rules in effect that look at one track alone."""
-        built = build_track(mined, all_labels, cluster, track_id, graphs, params.core_share if robust else 0.0)
+        """The cluster's boxes, with the rules in effect that look at one track alone (built once)."""
+        if cluster not in built_tracks:
+            built_tracks[cluster] = one_track(cluster)
+        return replace(built_tracks[cluster], track_id=track_id)
+
+    def one_track(cluster: int) -> Track:
+        built = build_track(mined, all_labels, cluster, 0, graphs, params.core_share if robust else 0.0)
         if robust and params.still_regions and params.core_share > 0:
             built = drop_still_regions(built, mined, all_labels, graphs, transforms, params.core_share, lag)
         if robust and params.grow:

@@ -325,3 +325,32 @@ def drop_short_contacts(right, twin, rot_next, length, face_of, area, outside, t
             new_next[k] = index[rot_next[h]]
             new_length[k] = length[h]
     return new_right, new_twin, new_next, new_length
+
+
+@nb.njit(cache=True, nogil=True)
+def sets_nodes(face_sets: np.ndarray, he_origin: np.ndarray, face_half_edges: np.ndarray, face_offsets: np.ndarray,
+               n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
+    """The distinct nodes (ascending) around each row of ``face_sets`` (face ids, -1 padded), all
+    rows' one after the other, and where each row's end (``n_nodes`` counts the outside node)."""
+    seen_in = np.full(n_nodes, -1, dtype=np.int64)  # the last row that took each node
+    nodes = np.empty(16 * max(face_sets.shape[0], 1), dtype=np.int64)
+    ends = np.empty(face_sets.shape[0], dtype=np.int64)
+    n = 0
+    for row in range(face_sets.shape[0]):
+        start = n
+        for i in range(face_sets.shape[1]):
+            f = face_sets[row, i]
+            if f < 0:
+                continue
+            for a in range(face_offsets[f], face_offsets[f + 1]):
+                node = he_origin[face_half_edges[a]]
+                if seen_in[node] == row:
+                    continue
+                seen_in[node] = row
+                if n == nodes.size:
+                    nodes = _grow(nodes, 2 * n)
+                nodes[n] = node
+                n += 1
+        nodes[start:n] = np.sort(nodes[start:n])
+        ends[row] = n
+    return nodes[:n], ends

@@ -5,8 +5,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from trap_core.rag._kernels import (drop_short_contacts, region_stats, rotation_system, trace_boundary_graph,
-                                    trace_faces)
+from trap_core.rag._kernels import (drop_short_contacts, region_stats, rotation_system, sets_nodes,
+                                    trace_boundary_graph, trace_faces)
 from trap_core.rag.errors import GraphError
 
 
@@ -69,7 +69,15 @@ class PlaneGraph:
     def faces_nodes(self, faces: np.ndarray | frozenset[int]) -> np.ndarray:
         """Nodes (sorted, distinct) around a set of faces, such as one pattern occurrence (face
         ids below 0 are padding and skipped)."""
-        return np.unique(np.concatenate([self.face_nodes(f) for f in faces if f >= 0]))
+        return self.sets_nodes(np.fromiter(faces, np.int64).reshape(1, -1))[0]
+
+    def sets_nodes(self, face_sets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Nodes (sorted, distinct) around each row of ``face_sets`` (occurrences' faces, ids
+        below 0 are padding), the rows' one after the other, and where each row's end: the
+        regions of a frame's many occurrences in one compiled pass rather than one call each.
+        """
+        face_sets = np.asarray(face_sets, dtype=np.int64).reshape(len(face_sets), -1)
+        return sets_nodes(face_sets, self.he_origin, self.face_half_edges, self.face_offsets, self.n_nodes + 1)
 
     def outer_faces(self) -> np.ndarray:
         """(F,) bool: the face touches the outside node (it is part of the outer face)."""

@@ -94,10 +94,15 @@ def _shared_regions(result: MiningResult, patterns: np.ndarray,
     keys, sighting = np.unique(np.column_stack([owner, frames]), axis=0, return_inverse=True)
     sighting = sighting.reshape(-1)
     first_node = np.r_[0, np.cumsum([graph.n_nodes + 1 for graph in graphs])]  # nodes of all frames, one id space
-    nodes = [graphs[frame].faces_nodes(faces) + first_node[frame]
-             for frame, faces in zip(frames.tolist(), result.occ_faces[rows])]
-    holder = np.repeat(sighting, [n.size for n in nodes])
-    incidence = sparse.csr_matrix((np.ones(holder.size), (holder, np.concatenate(nodes))),
+    by_frame = np.argsort(frames, kind="stable")
+    known, starts = np.unique(frames[by_frame], return_index=True)
+    nodes, holder = [], []
+    for frame, at in zip(known.tolist(), np.split(by_frame, starts[1:])):
+        frame_nodes, ends = graphs[frame].sets_nodes(result.occ_faces[rows[at]])
+        nodes.append(frame_nodes + first_node[frame])
+        holder.append(np.repeat(sighting[at], np.diff(ends, prepend=0)))
+    holders = np.concatenate(holder)
+    incidence = sparse.csr_matrix((np.ones(holders.size), (holders, np.concatenate(nodes))),
                                   shape=(keys.shape[0], int(first_node[-1])))
     pairs = (incidence @ incidence.T).tocoo()
     distinct = pairs.row != pairs.col

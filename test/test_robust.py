@@ -8,6 +8,7 @@ import pytest
 
 from trap_core.clustering import ObservedPaths, Trajectories
 from trap_core.evaluation import box_precision_recall
+from trap_core.mining import MiningResult
 from trap_core.mining._kernels import assign_occurrences, link_occurrences
 from trap_core.pipeline import TrapParams, frame_graph, synthetic_graphs, track
 from trap_core.robust import BorderContacts, camera_transforms, rejoin_fragments, world_speed
@@ -347,7 +348,6 @@ def test_a_fragment_leaves_at_the_border_if_one_of_its_last_patterns_does() -> N
 def test_border_contacts_of_first_and_last_boxes_moving_in_and_out() -> None:
     """Patterns 0 and 1 come in from the border; 2 goes out; 3 starts at the border but goes
     further out (the border cut a new structure from its object): it leaves, it does not enter."""
-    from trap_core.mining import MiningResult
     from trap_core.robust import border_contacts
     box = np.array([[600, 100, 639, 140],   # pattern 0 starts at the right border...
                     [300, 100, 340, 140],   # ...and ends inside
@@ -372,7 +372,6 @@ def test_border_contacts_of_patterns_that_break_up_before_the_border_or_form_aft
     25 %): it does not leave, but 10 frames more at its speed take it there. Pattern 1 starts
     30 px from the left border coming in at 2 px a frame. Pattern 2 goes up slowly (0.5 px a
     frame) and ends as far from the border: no more than 10 frames from it."""
-    from trap_core.mining import MiningResult
     from trap_core.robust import border_contacts
     box = np.array([[300, 60, 340, 100], [300, 30, 340, 70],   # pattern 0, frames 0 and 10
                     [30, 200, 70, 240], [50, 200, 90, 240],    # pattern 1, frames 0 and 10
@@ -389,21 +388,35 @@ def test_border_contacts_of_patterns_that_break_up_before_the_border_or_form_aft
     assert not border_contacts(result, np.arange(3), 640, 480, lag=1, reach=5).to_border[0]  # 15 px short
 
 
-def test_border_share_counts_occurrences_cut_by_the_edge_per_cluster() -> None:
-    """Only regions reaching the edge itself count (margin 0); each cluster's share is over its
-    patterns' occurrences."""
-    from trap_core.mining import MiningResult
-    from trap_core.robust import border_share
+def _cut_and_whole() -> MiningResult:
+    """Three patterns: 0 a large region cut by the view (two occurrences), 1 inside, 2 once 2 px
+    from the left edge and once at the right one (1280 x 720 frames)."""
     box = np.array([[0, 0, 700, 650],       # pattern 0: a large region cut by the view, twice
                     [10, 0, 720, 640],
                     [300, 100, 340, 140],   # pattern 1: inside
                     [2, 100, 42, 140],      # pattern 2: 2 px from the left edge (inside) ...
                     [1240, 100, 1279, 140]], dtype=np.float32)  # ... then at the right edge
     empty = np.zeros(3)
-    result = MiningResult(empty, empty, empty, np.arange(5), np.zeros(5, int), np.zeros((5, 2)), box, box,
-                          np.zeros((5, 3), int), np.arange(3), np.array([0, 2, 3, 5]), np.arange(5))
-    share = border_share(result, np.array([0, 1, 2]), np.array([0, 1, 1]), 1280, 720)
+    return MiningResult(empty, empty, empty, np.arange(5), np.zeros(5, int), np.zeros((5, 2)), box, box,
+                        np.zeros((5, 3), int), np.arange(3), np.array([0, 2, 3, 5]), np.arange(5))
+
+
+def test_border_share_counts_occurrences_cut_by_the_edge_per_cluster() -> None:
+    """Only regions reaching the edge itself count (margin 0); each cluster's share is over its
+    patterns' occurrences."""
+    from trap_core.robust import border_share
+    share = border_share(_cut_and_whole(), np.array([0, 1, 2]), np.array([0, 1, 1]), 1280, 720)
     assert share.tolist() == [1.0, 1 / 3]
+
+
+def test_patterns_seen_whole_leave_a_cluster_seen_mostly_cut() -> None:
+    """A cluster mostly cut by the view loses its patterns seen whole to a cluster of their own;
+    a cluster mostly seen whole keeps its cut patterns, and one with no whole pattern is left."""
+    from trap_core.robust import whole_patterns_apart
+    result, patterns = _cut_and_whole(), np.array([0, 1, 2])
+    assert whole_patterns_apart(result, patterns, np.array([0, 0, 1]), 1280, 720).tolist() == [0, 2, 1]
+    labels = np.array([0, 1, 1])
+    assert whole_patterns_apart(result, patterns, labels, 1280, 720) is labels
 
 
 def _lookalike_pair(n: int = 80) -> tuple[np.ndarray, np.ndarray]:

@@ -14,12 +14,12 @@ from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
-from trap_core.robust import (border_contacts, border_share, camera_paths, camera_transforms, cluster_world_speed,
-                              continue_to_border, continue_tracks, drop_repeated_pieces, drop_shared_stretches,
-                              drop_still_regions, drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes,
-                              hand_to_owners, join_handovers, keep_one_size, lookalike_tracks, mend_shared_stretches,
-                              merge_duplicates, pattern_sizes, rejoin_fragments, separate_groups, split_mixed,
-                              swap_at_crossings, world_speed)
+from trap_core.robust import (CUT_SHARE, border_contacts, border_share, camera_paths, camera_transforms,
+                              cluster_world_speed, continue_to_border, continue_tracks, drop_repeated_pieces,
+                              drop_shared_stretches, drop_still_regions, drop_strays, end_at_exits, extend_from_twins,
+                              fill_gaps, grow_boxes, hand_to_owners, join_handovers, keep_one_size, lookalike_tracks,
+                              mend_shared_stretches, merge_duplicates, pattern_sizes, rejoin_fragments,
+                              separate_groups, split_mixed, swap_at_crossings, whole_patterns_apart, world_speed)
 
 
 @dataclass
@@ -86,12 +86,14 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                                   occurrences, transforms,
                                   adjacent_gap=max(1, params.tau // 10), adjacent_reach=params.eps / 4,
                                   max_apart=params.eps)
+    if robust and params.min_speed > 0:  # an object's patterns out of a cluster mostly cut by the view
+        labels = whole_patterns_apart(mined, clustered, labels, width, height)
     summary = summarise(labels, sub_paths, occurrences, n_frames)
     moving = None
     if robust and params.min_speed > 0:  # the whole cluster too: averaged, noise no longer passes for motion;
         # and mostly seen whole (a large region cut by the view "moves" as the camera pans)
         moving = ((cluster_world_speed(summary, transforms, params.tau) >= still_below)
-                  & (border_share(mined, clustered, labels, width, height) <= 0.5))
+                  & (border_share(mined, clustered, labels, width, height) <= CUT_SHARE))
     own_frames = robust and params.own_frames
     selected = select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
                                params.min_track_length, params.separation, eligible=moving, own_frames=own_frames)

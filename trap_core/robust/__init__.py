@@ -12,14 +12,15 @@ from trap_core.robust.gaps import fill_gaps
 from trap_core.robust.groups import separate_groups
 from trap_core.robust.mixed import pattern_sizes, split_mixed
 from trap_core.robust.owners import hand_to_owners
-from trap_core.robust.rejoin import BorderContacts, border_contacts, border_share, rejoin_fragments
+from trap_core.robust.rejoin import (CUT_SHARE, BorderContacts, border_contacts, border_share, rejoin_fragments,
+                                    whole_patterns_apart)
 from trap_core.robust.sizes import keep_one_size
 from trap_core.robust.still import drop_still_regions
 from trap_core.robust.strays import drop_strays
 
-__all__ = ["BorderContacts", "border_contacts", "border_share", "camera_paths", "camera_transforms",
+__all__ = ["CUT_SHARE", "BorderContacts", "border_contacts", "border_share", "camera_paths", "camera_transforms",
            "cluster_world_speed", "continue_to_border", "continue_tracks", "drop_repeated_pieces",
            "drop_shared_stretches", "drop_still_regions", "drop_strays", "end_at_exits", "extend_from_twins",
            "fill_gaps", "grow_boxes", "hand_to_owners", "join_handovers", "keep_one_size", "lookalike_tracks",
            "mend_shared_stretches", "merge_duplicates", "pattern_sizes", "reaches_border", "rejoin_fragments",
-           "separate_groups", "split_mixed", "swap_at_crossings", "world_speed"]
+           "separate_groups", "split_mixed", "swap_at_crossings", "whole_patterns_apart", "world_speed"]

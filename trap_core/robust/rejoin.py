@@ -54,6 +54,7 @@ class BorderContacts(NamedTuple):
 ALONG_FRAMES = 4
 ALONG_SHARE = 0.8
 PAIR_CELLS = 1 << 21  # pairs x frames compared at once by _going_along
+CUT_SHARE = 0.5  # a cluster (pattern) with more of its occurrences cut by the view is no evidence of motion
 
 
 def structure_similarity(labels: np.ndarray, st_pattern: np.ndarray, weights: np.ndarray | float = 1.0
@@ -296,6 +297,27 @@ def border_share(result: MiningResult, patterns: np.ndarray, labels: np.ndarray,
     cut = _occurrences_reach_border(result, rows, width, height, margin=0.0)
     cluster = labels[owner]
     return np.bincount(cluster, weights=cut) / np.maximum(np.bincount(cluster), 1)
+
+
+def whole_patterns_apart(result: MiningResult, patterns: np.ndarray, labels: np.ndarray, width: int, height: int,
+                         max_cut: float = CUT_SHARE) -> np.ndarray:
+    """``labels`` (cluster of each of ``patterns``) where each cluster seen mostly cut by the view
+    (:func:`border_share` over ``max_cut``) has its patterns that are mostly seen whole moved to a
+    cluster of their own (numbered after the others).
+
+    Such a cluster is no evidence of motion as a whole, yet it can hold an object's patterns that
+    trajectory clustering put with background patterns cut by the edge (identical discs on a
+    road, one disc's few patterns with those of the road's markings): apart, they are judged on
+    their own motion (the same labels are returned where no cluster has any).
+    """
+    cut = border_share(result, patterns, labels, width, height)
+    own_cut = border_share(result, patterns, np.arange(labels.size), width, height)
+    apart = (cut[labels] > max_cut) & (own_cut <= max_cut)
+    if not apart.any():
+        return labels
+    out = labels.copy()
+    out[apart] = labels.max() + 1 + np.unique(labels[apart], return_inverse=True)[1].reshape(-1)
+    return out
 
 
 def _occurrences_reach_border(result: MiningResult, rows: np.ndarray, width: float, height: float,

@@ -232,8 +232,8 @@ def _place_kept(graph: PlaneGraph, nodes: np.ndarray, ends: np.ndarray, lifetime
 
 
 def _most_held(nodes: np.ndarray, share: float) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes held by at least ``share`` of the node sets ``nodes`` come from (one after the
-    other, each set's distinct) as many as the most held one, and those most held."""
+    """Nodes held by at least ``share`` times as many node sets as the most held node, and the
+    most held ones; ``nodes`` are the sets' nodes one set after the other (each set's distinct)."""
     seen = np.bincount(nodes)
     return np.flatnonzero(seen >= max(share * seen.max(), 1)), np.flatnonzero(seen == seen.max())
 

@@ -106,12 +106,13 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     built_tracks: dict[int, Track] = {}  # per cluster: rules look at the same clusters' tracks again
 
     def track_of(cluster: int, track_id: int) -> Track:
-        """The cluster's boxes, with the rules in effect that look at one track alone (built once)."""
+        """The cluster's track with id ``track_id``, built once (:func:`one_track`)."""
         if cluster not in built_tracks:
             built_tracks[cluster] = one_track(cluster)
         return replace(built_tracks[cluster], track_id=track_id)
 
     def one_track(cluster: int) -> Track:
+        """The cluster's boxes, with the rules in effect that look at one track alone."""
         built = build_track(mined, all_labels, cluster, 0, graphs, params.core_share if robust else 0.0)
         if robust and params.still_regions and params.core_share > 0:
             built = drop_still_regions(built, mined, all_labels, graphs, transforms, params.core_share, lag)

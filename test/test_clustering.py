@@ -6,8 +6,8 @@ import pytest
 from scipy.cluster.hierarchy import linkage
 
 from trap_core.clustering import (ClusteringError, Trajectories, build_track, cluster_patterns, labels_after_merges,
-                                  lifetime_cut, observed_paths, pattern_distances, select_clusters, summarise,
-                                  trajectories, twin_clusters)
+                                  lifetime_cut, observed_paths, pattern_distances, seen_frames, select_clusters,
+                                  summarise, trajectories, twin_clusters)
 from trap_core.mining import MiningResult
 
 
@@ -130,6 +130,24 @@ def test_selection_by_own_frames_prefers_a_cluster_of_its_own_to_a_chain() -> No
     assert select_clusters(summary, 100) == [0, 1]
     assert select_clusters(summary, 100, own_frames=True) == [0, 2]
     assert select_clusters(summary, 100, n_objects=2, own_frames=True) == [0, 1]  # the paper's rule: longest
+
+
+def test_unsupervised_selection_asks_a_cluster_to_be_seen_not_only_to_span() -> None:
+    """Cluster 1 spans 57 frames but has occurrences in 8 of them (one pattern seen now and
+    then): with the frames it is seen in, it is no track; the paper's count by ``n_objects``
+    still takes it."""
+    frames = np.r_[np.arange(100), np.arange(20, 80, 8)]
+    result = MiningResult(np.array([1, 2]), np.array([100, 8]), np.array([1, 1]), frames,
+                          np.r_[np.zeros(100, int), np.ones(8, int)], np.r_[np.zeros((100, 2)), np.full((8, 2), 300.0)],
+                          np.zeros((108, 4)), np.zeros((108, 4)), np.zeros((108, 1), np.int64), np.array([0, 1]),
+                          np.array([0, 100, 108]), np.arange(108))
+    seen = seen_frames(result, np.array([0, 1]), np.array([0, 1]))
+    assert seen.tolist() == [100, 8]
+    summary = summarise(np.array([0, 1]), trajectories(observed_paths(result), np.arange(2)), np.array([100, 8]), 100)
+    assert summary.length.tolist() == [100, 57]
+    assert select_clusters(summary, 100, separation=5.0) == [0, 1]
+    assert select_clusters(summary, 100, separation=5.0, seen=seen) == [0]
+    assert select_clusters(summary, 100, n_objects=2, seen=seen) == [0, 1]
 
 
 def test_twin_clusters_are_beside_a_kept_one_with_frames_it_lacks() -> None:

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from trap_core.clustering.trajectory import Trajectories
+from trap_core.mining import MiningResult
 
 
 @dataclass(frozen=True)
@@ -52,9 +53,22 @@ def _longest(summary: ClusterSummary, candidates: np.ndarray, lengths: np.ndarra
     return int(near[order[0]])
 
 
+def seen_frames(result: MiningResult, patterns: np.ndarray, labels: np.ndarray) -> np.ndarray:
+    """(C,) frames in which each cluster (``labels``: cluster of each of ``patterns``) has an
+    occurrence. A cluster's length counts every frame its patterns span, and a pattern's path
+    bridges gaps of up to ``tau`` frames: one pattern seen now and then spans many frames it is
+    not seen in (a background structure that noise makes and unmakes)."""
+    rows, owner = result.rows_of(patterns)
+    frames = result.occ_frame[rows].astype(np.int64)
+    n_frames = int(frames.max()) + 1 if frames.size else 1
+    sightings = np.unique(labels[owner].astype(np.int64) * n_frames + frames)
+    return np.bincount(sightings // n_frames, minlength=int(labels.max()) + 1 if labels.size else 0)
+
+
 def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | None = None,
                     tolerance: float = 0.1, min_length: float = 0.25, separation: float = 40.0,
-                    max_objects: int = 20, eligible: np.ndarray | None = None, own_frames: bool = False) -> list[int]:
+                    max_objects: int = 20, eligible: np.ndarray | None = None, own_frames: bool = False,
+                    seen: np.ndarray | None = None) -> list[int]:
     """Clusters that are tracks, in order of selection.
 
     ``eligible``: per cluster, whether it may be a track at all (ours: clusters that move
@@ -68,11 +82,15 @@ def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | Non
     distance to each) also rejects a chain of fragments that follows one object, then
     another. With ``own_frames`` (ours) "longest" counts only a cluster's own frames, those
     where no kept cluster is near: a chain that follows a kept object for a third of its frames
-    no longer beats a shorter cluster that is all its own.
+    no longer beats a shorter cluster that is all its own. Given ``seen`` (ours: per cluster,
+    the frames where it has occurrences, :func:`seen_frames`), the unsupervised count also asks
+    that a cluster be seen in ``min_length`` of the video, not only span it.
     """
     remaining = np.arange(summary.length.size)
     if eligible is not None:
         remaining = remaining[eligible]
+    if n_objects is None and seen is not None:
+        remaining = remaining[seen[remaining] >= min_length * n_frames]
     if n_objects is None and own_frames:
         return _most_own_frames(summary, remaining[summary.length[remaining] >= min_length * n_frames], n_frames,
                                 tolerance, separation, max_objects)

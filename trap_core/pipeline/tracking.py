@@ -8,8 +8,8 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from trap_core.clustering import (ClusterSummary, Hierarchy, Track, Trajectories, build_track, cluster_patterns,
-                                  observed_paths, pattern_distances, select_clusters, summarise, trajectories,
-                                  twin_clusters)
+                                  observed_paths, pattern_distances, seen_frames, select_clusters, summarise,
+                                  trajectories, twin_clusters)
 from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
@@ -96,7 +96,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                   & (border_share(mined, clustered, labels, width, height) <= CUT_SHARE))
     own_frames = robust and params.own_frames
     selected = select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
-                               params.min_track_length, params.separation, eligible=moving, own_frames=own_frames)
+                               params.min_track_length, params.separation, eligible=moving, own_frames=own_frames,
+                               seen=seen_frames(mined, clustered, labels) if own_frames else None)
     all_labels = np.full(mined.n_st, -1, dtype=np.int64)
     all_labels[clustered] = labels
     if robust and params.one_object:

@@ -4,6 +4,8 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
+from trap_core.mining._kernels import _root  # union-find root with path halving, shared with occurrence linking
+
 
 @nb.njit(cache=True, nogil=True, parallel=False)
 def pairwise_distance(start: np.ndarray, end: np.ndarray, offsets: np.ndarray, points: np.ndarray) -> np.ndarray:
@@ -34,14 +36,6 @@ def pairwise_distance(start: np.ndarray, end: np.ndarray, offsets: np.ndarray, p
                 out[k] = total / (fe - fs + 1) * (2.0 - overlap)
             k += 1
     return out
-
-
-@nb.njit(cache=True, nogil=True)
-def _root(parent: np.ndarray, item: int) -> int:
-    while parent[item] != item:
-        parent[item] = parent[parent[item]]
-        item = parent[item]
-    return item
 
 
 @nb.njit(cache=True, nogil=True)

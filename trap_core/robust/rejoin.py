@@ -293,10 +293,8 @@ def border_share(result: MiningResult, patterns: np.ndarray, labels: np.ndarray,
     """(C,) share of each cluster's occurrences (``labels``: cluster of each of ``patterns``) whose
     regions reach the image's edge. Regions cut by the view have barycentres that move with
     the crop, not with what they show: a cluster seen mostly so is no evidence of motion."""
-    rows, owner = result.rows_of(patterns)
-    cut = _occurrences_reach_border(result, rows, width, height, margin=0.0)
-    cluster = labels[owner]
-    return np.bincount(cluster, weights=cut) / np.maximum(np.bincount(cluster), 1)
+    owner, cut = _cut_occurrences(result, patterns, width, height)
+    return _share(labels[owner], cut)
 
 
 def whole_patterns_apart(result: MiningResult, patterns: np.ndarray, labels: np.ndarray, width: int, height: int,
@@ -310,14 +308,26 @@ def whole_patterns_apart(result: MiningResult, patterns: np.ndarray, labels: np.
     road, one disc's few patterns with those of the road's markings): apart, they are judged on
     their own motion (the same labels are returned where no cluster has any).
     """
-    cut = border_share(result, patterns, labels, width, height)
-    own_cut = border_share(result, patterns, np.arange(labels.size), width, height)
-    apart = (cut[labels] > max_cut) & (own_cut <= max_cut)
+    owner, cut = _cut_occurrences(result, patterns, width, height)
+    apart = (_share(labels[owner], cut)[labels] > max_cut) & (_share(owner, cut) <= max_cut)
     if not apart.any():
         return labels
     out = labels.copy()
     out[apart] = labels.max() + 1 + np.unique(labels[apart], return_inverse=True)[1].reshape(-1)
     return out
+
+
+def _cut_occurrences(result: MiningResult, patterns: np.ndarray, width: float,
+                     height: float) -> tuple[np.ndarray, np.ndarray]:
+    """For every occurrence of ``patterns``: its pattern (index into ``patterns``) and whether its
+    regions reach the image's edge (margin 0)."""
+    rows, owner = result.rows_of(patterns)
+    return owner, _occurrences_reach_border(result, rows, width, height, margin=0.0)
+
+
+def _share(keys: np.ndarray, flags: np.ndarray) -> np.ndarray:
+    """Per key 0..max: the share of its items whose ``flags`` are set (0 for a key with none)."""
+    return np.bincount(keys, weights=flags) / np.maximum(np.bincount(keys), 1)
 
 
 def _occurrences_reach_border(result: MiningResult, rows: np.ndarray, width: float, height: float,

@@ -1489,3 +1489,23 @@ def test_boxes_that_slide_onto_something_else_and_back_are_dropped_and_a_smooth_
     curve = np.column_stack([300 + 150 * np.sin(angle), 100 + 150 * (1 - np.cos(angle)), np.full(60, 40.0),
                              np.full(60, 40.0)])
     assert len(drop_strays(_as_track(2, np.arange(60), curve), 8)) == 60
+
+
+def test_core_regions_leave_out_the_backdrop_every_face_of_the_object_holds() -> None:
+    """Over a plain scene one region covers most of the view, and the object's faces hold it
+    too: the core box is the object's, not the view's."""
+    from trap_core.clustering import core_regions
+    from trap_core.rag import build_plane_graph
+    labels = np.zeros((100, 100), dtype=np.int32)  # region 0: the backdrop
+    labels[40:60, 40:50] = 1   # the object: regions 1, 2, 3
+    labels[40:60, 50:60] = 2
+    labels[60:65, 40:60] = 3
+    graph = build_plane_graph(labels, 4, np.zeros((100, 100, 3), np.uint8))
+    assert np.array_equal(np.flatnonzero(graph.backdrop), [0])
+    inner = np.flatnonzero(~graph.outer_faces())
+    on_object = [f for f in inner if np.isin(graph.face_nodes(f), [1, 2, 3]).any()]
+    assert sum(0 in graph.face_nodes(f) for f in on_object) > len(on_object) / 2  # most hold the backdrop
+    face_sets = np.array(on_object)[:, None]
+    box_regions, _ = core_regions(graph, face_sets, 0.5, np.ones(len(on_object)))
+    assert np.array_equal(box_regions, [1, 2, 3])
+    assert np.array_equal(graph.nodes_box(box_regions), [40, 40, 20, 25])

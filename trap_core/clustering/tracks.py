@@ -190,11 +190,25 @@ def core_regions(graph: PlaneGraph, face_sets: np.ndarray, share: float,
     its patterns hold.
 
     Only the occurrences in the track's place count (:func:`one_place`): where the cluster is
-    in two places at once, the one of its longest-lived patterns (``lifetimes``).
+    in two places at once, the one of its longest-lived patterns (``lifetimes``). The backdrop
+    (:attr:`PlaneGraph.backdrop`) is never a core region: over a plain scene every face of an
+    object holds it, and the box would be the whole view.
     """
     nodes, ends = graph.sets_nodes(face_sets)
+    nodes, ends, lifetimes = _without_backdrop(graph, nodes, ends, lifetimes)
     kept = _place_kept(graph, nodes, ends, lifetimes, share)
     return _most_held(nodes if kept is None else nodes[np.repeat(kept, np.diff(ends, prepend=0))], share)
+
+
+def _without_backdrop(graph: PlaneGraph, nodes: np.ndarray, ends: np.ndarray,
+                      lifetimes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The node sets (``nodes[ends[i - 1]:ends[i]]``, with their ``lifetimes``) without the
+    backdrop's node; a set left empty goes, and all stay as they are where every set would."""
+    kept = ~graph.backdrop[nodes]
+    if kept.all() or not kept.any():
+        return nodes, ends, lifetimes
+    left = np.bincount(np.repeat(np.arange(ends.size), np.diff(ends, prepend=0))[kept], minlength=ends.size)
+    return nodes[kept], np.cumsum(left[left > 0]), lifetimes[left > 0]
 
 
 def one_place(graph: PlaneGraph, node_sets: list[np.ndarray], lifetimes: np.ndarray,

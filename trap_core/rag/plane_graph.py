@@ -9,6 +9,8 @@ from trap_core.rag._kernels import (drop_short_contacts, region_stats, rotation_
                                     trace_boundary_graph, trace_faces)
 from trap_core.rag.errors import GraphError
 
+BACKDROP_SHARE = 0.5  # a region over this share of the frame is the backdrop: only one can be
+
 
 @dataclass(frozen=True)
 class PlaneGraph:
@@ -51,6 +53,14 @@ class PlaneGraph:
         parts = self.bbox[nodes]
         x0, y0 = parts[:, 0].min(), parts[:, 1].min()
         return np.array([x0, y0, parts[:, 2].max() - x0 + 1, parts[:, 3].max() - y0 + 1], dtype=float)
+
+    @property
+    def backdrop(self) -> np.ndarray:
+        """(n,) bool: the region over ``BACKDROP_SHARE`` of the frame, if there is one. Over a
+        plain scene (sky, asphalt, a lawn, a smooth photograph) one region covers most of the
+        view and most faces hold it, objects' faces too: it is the scene, never an object, and
+        its barycentre stays near the middle of the view wherever the camera goes."""
+        return self.area > BACKDROP_SHARE * np.prod(self.frame_size)
 
     @property
     def n_faces(self) -> int:

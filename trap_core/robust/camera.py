@@ -36,7 +36,6 @@ from trap_core.rag import PlaneGraph
 GRID = 12  # cells per side of the frame, one vote each for the camera's motion
 AGREE_PX = 1.0  # a cell (a pattern) agrees with a camera motion that puts it within this
 MAX_ZOOM_STEP = 1.5  # no camera zooms by half between two frames: a fit that does is degenerate
-BACKDROP_SHARE = 0.5  # a region over this share of the frame is the backdrop: only one can be
 MATCH_AREA_RATIO = 1.5  # a region matched in the next frame has at most this ratio of areas to its match
 
 
@@ -44,7 +43,7 @@ def camera_paths(result: MiningResult, graphs: Sequence[PlaneGraph], observed: O
                  reach: float) -> ObservedPaths:
     """The paths :func:`camera_transforms` is fitted to: the patterns' ``observed`` paths
     (:func:`trap_core.clustering.observed_paths` of ``result``), with their occurrences placed
-    without the backdrop (a region over ``BACKDROP_SHARE`` of the frame) where they hold other
+    without the backdrop (:attr:`trap_core.rag.PlaneGraph.backdrop`) where they hold other
     regions, and the regions matched from frame to frame (:func:`_region_steps`, at most
     ``reach`` px apart) as paths of their own. ``graphs[i]`` is the frame of the occurrences with
     ``occ_frame == i``.
@@ -55,7 +54,7 @@ def camera_paths(result: MiningResult, graphs: Sequence[PlaneGraph], observed: O
     held most patterns and the motion read from them was 1.74 px a frame off; with the
     regions, 0.47 (``benchmarks/camera_motion.py``).
     """
-    backdrops = [graph.area > BACKDROP_SHARE * np.prod(graph.frame_size) for graph in graphs]
+    backdrops = [graph.backdrop for graph in graphs]
     if any(backdrop.any() for backdrop in backdrops):
         observed = _without_backdrop(result, graphs, backdrops)
     first_id = int(observed.pattern.max()) + 1 if observed.pattern.size else 0

@@ -679,6 +679,33 @@ def test_a_box_on_a_small_part_grows_over_the_body_around_it() -> None:
                                                              np.full(11, 40)]))
 
 
+def test_a_box_grows_again_over_parts_beyond_the_first_search_found_on_both_sides() -> None:
+    """Three parts in a row, the track's patterns on the first: the third is beyond the first
+    search around it, and is taken by a second round where the track has boxes on both sides."""
+    from trap_core.clustering import Track
+    from trap_core.robust import grow_boxes
+    params = TrapParams(segmentation="colour")
+    graphs = []
+    for t in range(21):
+        rgb = np.full((120, 260, 3), 40, np.uint8)
+        rgb[40:60, 160:190] = (0, 0, 200)  # a static block of the third part's colour, in the last search's reach
+        x = 20 + 3 * t
+        rgb[40:60, x:x + 20] = (0, 200, 0)        # the part the patterns hold
+        rgb[40:60, x + 20:x + 40] = (200, 0, 0)   # next to it
+        rgb[40:60, x + 40:x + 70] = (0, 0, 200)   # beyond half the held part's width
+        graphs.append(frame_graph(rgb, params))
+    frames = np.arange(21)
+    held = Track(1, frames, np.column_stack([20 + 3 * frames, np.full(21, 40), np.full(21, 20),
+                                             np.full(21, 20)]).astype(float), np.ones(21), 1)
+    still = np.tile(np.eye(3), (21, 1, 1))
+    once = grow_boxes(held, graphs, still, lag=5, rounds=1)
+    np.testing.assert_allclose(once.boxes[:, 2], 40)  # the held part and the one next to it
+    grown = grow_boxes(held, graphs, still, lag=5)
+    both_sides = (frames >= 5) & (frames <= 15)
+    np.testing.assert_allclose(grown.boxes[both_sides, 2], 70)  # all three, not the static block
+    np.testing.assert_allclose(grown.boxes[~both_sides, 2], 40)  # one side only: one round
+
+
 def test_a_sparse_track_grows_against_its_box_interpolated_through_short_gaps() -> None:
     """Patterns seen every third frame only: no frame has a box of its own lag frames away."""
     from trap_core.clustering import Track

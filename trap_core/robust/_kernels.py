@@ -13,15 +13,16 @@ AREA_RATIO = 1.25
 @nb.njit(cache=True, nogil=True)
 def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
                    other_centroid: np.ndarray, other_area: np.ndarray, other_label: np.ndarray,
-                   box: np.ndarray, other_box: np.ndarray, camera: np.ndarray, reach: float, tolerance: float,
-                   max_area: float) -> np.ndarray:
-    """Mask of the regions near ``box`` that the track's displacement to the other frame puts on
-    a look-alike region (same label, area within ``AREA_RATIO``, within ``tolerance`` sqrt(area) + 1
-    px) at least twice as close as the camera's motion ``camera`` (3x3) does. Regions over
-    ``max_area`` times the box are left out unless their box encloses it."""
-    x, y, w, h = box[0], box[1], box[2], box[3]
-    shift_x = other_box[0] + other_box[2] / 2 - (x + w / 2)
-    shift_y = other_box[1] + other_box[3] / 2 - (y + h / 2)
+                   box: np.ndarray, other_box: np.ndarray, around: np.ndarray, camera: np.ndarray, reach: float,
+                   tolerance: float, max_area: float) -> np.ndarray:
+    """Mask of the regions near ``around`` (a box) that the track's displacement to the other
+    frame (``box`` to ``other_box``) puts on a look-alike region (same label, area within
+    ``AREA_RATIO``, within ``tolerance`` sqrt(area) + 1 px) at least twice as close as the camera's
+    motion ``camera`` (3x3) does. Regions over ``max_area`` times ``around`` are left out unless
+    their box encloses it."""
+    shift_x = other_box[0] + other_box[2] / 2 - (box[0] + box[2] / 2)
+    shift_y = other_box[1] + other_box[3] / 2 - (box[1] + box[3] / 2)
+    x, y, w, h = around[0], around[1], around[2], around[3]
     found = np.zeros(bbox.shape[0], dtype=np.bool_)
     for i in range(bbox.shape[0]):
         if (bbox[i, 2] < x - reach * w or bbox[i, 3] < y - reach * h or bbox[i, 0] > x + w + reach * w

@@ -8,7 +8,11 @@ the track's displacement brings it onto a region of the same label and about the
 (within 25 %: a background region the object passes over changes area as it is hidden), within
 ``tolerance`` times the square root of its area, and the camera's motion does not bring it
 anywhere nearly as close (background regions move with the camera). Either direction suffices:
-noisy regions are often found again on one side only. A noisy object's patterns are also
+noisy regions are often found again on one side only. Over a textured ground the parts a
+person's patterns hold can be one arm and one leg, and the head and the other side are further
+than the search reaches: the box grows again from the grown box, for up to ``rounds`` rounds, but
+a region it takes then must be found again on both sides (it is further from what the patterns
+hold). A noisy object's patterns are also
 missed for a few frames here and there, so the track's displacement is measured against its box
 interpolated through short gaps (:func:`fill_gaps`) where it has none of its own in that frame:
 else a sparse track's boxes never grow and stay on the one part its patterns hold.
@@ -31,7 +35,7 @@ MAX_AREA = 4.0
 
 
 def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarray, lag: int = 5,
-               reach: float = 0.5, tolerance: float = 0.3, max_gap: int = 0) -> Track:
+               reach: float = 0.5, tolerance: float = 0.3, max_gap: int = 0, rounds: int = 3) -> Track:
     """The track with each box grown over the nearby regions that move with it.
 
     Parameters
@@ -53,6 +57,9 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
     max_gap : int
         Where the track has no box ``lag`` frames away, its box interpolated through a gap
         of at most this many frames stands in. Only frames with a box of their own grow.
+    rounds : int
+        Times a box grows: each round searches around the box the previous one grew, and after
+        the first a region must be found again both ``lag`` frames before and after.
 
     Returns
     -------
@@ -65,20 +72,25 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
     boxes = track.boxes.astype(float)
     for i, frame in enumerate(track.frames.tolist()):
         here, from_here = graphs[frame], np.linalg.inv(transforms[frame])
-        moving = None
-        for other in (frame - lag, frame + lag):
-            j = slot[other] if 0 <= other < len(graphs) else -1
-            if j < 0:
-                continue
-            there = graphs[other]
-            found = moving_regions(here.bbox, here.centroid, here.area, here.label, there.centroid, there.area,
-                                   there.label, core[slot[frame]], core[j],
-                                   transforms[other] @ from_here, reach, tolerance, MAX_AREA)
-            moving = found if moving is None else moving | found
-        if moving is not None and moving.any():
-            x, y, w, h = boxes[i]
-            parts = here.bbox[moving]
-            x0, y0 = min(x, parts[:, 0].min()), min(y, parts[:, 1].min())
-            x1, y1 = max(x + w - 1, parts[:, 2].max()), max(y + h - 1, parts[:, 3].max())
-            boxes[i] = (x0, y0, x1 - x0 + 1, y1 - y0 + 1)
+        sides = [(graphs[other], core[slot[other]], transforms[other] @ from_here)
+                 for other in (frame - lag, frame + lag) if 0 <= other < len(graphs) and slot[other] >= 0]
+        for round_ in range(rounds if len(sides) == 2 else 1):
+            found = [moving_regions(here.bbox, here.centroid, here.area, here.label, there.centroid, there.area,
+                                    there.label, core[slot[frame]], there_box, boxes[i].copy(), camera, reach,
+                                    tolerance, MAX_AREA) for there, there_box, camera in sides]
+            moving = np.logical_or.reduce(found) if round_ == 0 else np.logical_and.reduce(found)
+            if not np.any(moving):
+                break
+            grown = _around(boxes[i], here.bbox[moving])
+            if np.array_equal(grown, boxes[i]):
+                break
+            boxes[i] = grown
     return dataclasses.replace(track, boxes=boxes)
+
+
+def _around(box: np.ndarray, parts: np.ndarray) -> np.ndarray:
+    """(x, y, w, h) of the box around ``box`` and the region boxes ``parts`` (x0, y0, x1, y1 inclusive)."""
+    x, y, w, h = box
+    x0, y0 = min(x, parts[:, 0].min()), min(y, parts[:, 1].min())
+    x1, y1 = max(x + w - 1, parts[:, 2].max()), max(y + h - 1, parts[:, 3].max())
+    return np.array([x0, y0, x1 - x0 + 1, y1 - y0 + 1])

@@ -195,13 +195,13 @@ def core_regions(graph: PlaneGraph, face_sets: np.ndarray, share: float,
     object holds it, and the box would be the whole view.
     """
     nodes, ends = graph.sets_nodes(face_sets)
-    nodes, ends, lifetimes = _without_backdrop(graph, nodes, ends, lifetimes)
+    nodes, ends, lifetimes = _sets_without_backdrop(graph, nodes, ends, lifetimes)
     kept = _place_kept(graph, nodes, ends, lifetimes, share)
     return _most_held(nodes if kept is None else nodes[np.repeat(kept, np.diff(ends, prepend=0))], share)
 
 
-def _without_backdrop(graph: PlaneGraph, nodes: np.ndarray, ends: np.ndarray,
-                      lifetimes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _sets_without_backdrop(graph: PlaneGraph, nodes: np.ndarray, ends: np.ndarray,
+                           lifetimes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The node sets (``nodes[ends[i - 1]:ends[i]]``, with their ``lifetimes``) without the
     backdrop's node; a set left empty goes, and all stay as they are where every set would."""
     kept = ~graph.backdrop[nodes]

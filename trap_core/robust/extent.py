@@ -76,7 +76,7 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
                  for other in (frame - lag, frame + lag) if 0 <= other < len(graphs) and slot[other] >= 0]
         for round_ in range(rounds if len(sides) == 2 else 1):
             found = [moving_regions(here.bbox, here.centroid, here.area, here.label, there.centroid, there.area,
-                                    there.label, core[slot[frame]], there_box, boxes[i].copy(), camera, reach,
+                                    there.label, core[slot[frame]], there_box, boxes[i], camera, reach,
                                     tolerance, MAX_AREA) for there, there_box, camera in sides]
             moving = np.logical_or.reduce(found) if round_ == 0 else np.logical_and.reduce(found)
             if not np.any(moving):

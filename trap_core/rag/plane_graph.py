@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -54,12 +55,13 @@ class PlaneGraph:
         x0, y0 = parts[:, 0].min(), parts[:, 1].min()
         return np.array([x0, y0, parts[:, 2].max() - x0 + 1, parts[:, 3].max() - y0 + 1], dtype=float)
 
-    @property
+    @cached_property
     def backdrop(self) -> np.ndarray:
         """(n,) bool: the region over ``BACKDROP_SHARE`` of the frame, if there is one. Over a
         plain scene (sky, asphalt, a lawn, a smooth photograph) one region covers most of the
         view and most faces hold it, objects' faces too: it is the scene, never an object, and
-        its barycentre stays near the middle of the view wherever the camera goes."""
+        its barycentre stays near the middle of the view wherever the camera goes. Read once
+        per graph: every core box of every track asks for it again."""
         return self.area > BACKDROP_SHARE * np.prod(self.frame_size)
 
     @property

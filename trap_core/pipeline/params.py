@@ -72,6 +72,10 @@ class TrapParams:
                                   "frames, below which patterns (and, over tau frames, clusters) are background "
                                   "(0.0012 = 0.77 px/frame at 640 px; per frame, as the barycentres' jitter it "
                                   "stands above, at any frame rate); 0 = off")
+    steady_steps: float = _p(0.5, "robust: a pattern whose median step from one frame to the next (in the world) is "
+                                  "less than this share of its speed over tau/2 frames moves in hops between still "
+                                  "stretches, a chain linked across look-alikes of the background (bricks, tiles); "
+                                  "a cluster mostly (in occurrences) of such patterns is background; 0 = off")
     one_object: bool = _p(True, "robust: a cluster of the cut whose patterns lie on two objects at once (further "
                                 "apart than half their sizes on average, or in tau frames) is split down the "
                                 "hierarchy; a selected cluster's pattern that shares its regions mostly with "
@@ -142,8 +146,9 @@ class TrapParams:
             (self.separation >= 0 and 1 <= self.threads <= 64, "separation >= 0 and threads within 1..64"),
             (self.size_jump == 0 or self.size_jump > 1, "size_jump must be 0 (off) or more than 1"),
             (self.link_reach >= 0, "link_reach must be >= 0"),
-            (self.min_speed >= 0 and 0 <= self.rejoin_similarity <= 1 and 0 <= self.core_share <= 1,
-             "min_speed >= 0, rejoin_similarity and core_share within [0, 1]"),
+            (self.min_speed >= 0 and 0 <= self.rejoin_similarity <= 1 and 0 <= self.core_share <= 1
+             and 0 <= self.steady_steps <= 1,
+             "min_speed >= 0, rejoin_similarity, core_share and steady_steps within [0, 1]"),
         ]
         for ok, message in checks:
             if not ok:

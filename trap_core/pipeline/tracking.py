@@ -14,12 +14,13 @@ from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
-from trap_core.robust import (CUT_SHARE, border_contacts, border_share, camera_paths, camera_transforms,
+from trap_core.robust import (CUT_SHARE, HOP_SHARE, border_contacts, border_share, camera_paths, camera_transforms,
                               cluster_world_speed, continue_to_border, continue_tracks, drop_repeated_pieces,
                               drop_shared_stretches, drop_still_regions, drop_strays, end_at_exits, extend_from_twins,
                               fill_gaps, grow_boxes, hand_to_owners, join_handovers, keep_one_size, lookalike_tracks,
                               mend_shared_stretches, merge_duplicates, pattern_sizes, rejoin_fragments,
-                              separate_groups, split_mixed, swap_at_crossings, whole_patterns_apart, world_speed)
+                              separate_groups, split_mixed, swap_at_crossings, whole_patterns_apart, world_speed,
+                              world_steps)
 
 
 @dataclass
@@ -67,6 +68,9 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     if robust and params.min_speed > 0:
         speed = world_speed(observed, transforms, mined.n_st, max(1, params.tau // 2))
         clustered = np.flatnonzero(speed >= still_below)
+        if params.steady_steps > 0:  # NaN steps (never seen in frames close enough) compare False: steady
+            steps, in_hops = world_steps(observed, transforms, mined.n_st, hop=params.eps / 4)
+            hopping = (steps < params.steady_steps * speed) & (in_hops >= HOP_SHARE)
     seconds["camera"] = time.perf_counter() - start
     start = time.perf_counter()
     sub_paths = trajectories(observed, clustered)
@@ -94,6 +98,10 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         # and mostly seen whole (a large region cut by the view "moves" as the camera pans)
         moving = ((cluster_world_speed(summary, transforms, params.tau) >= still_below)
                   & (border_share(mined, clustered, labels, width, height) <= CUT_SHARE))
+        if params.steady_steps > 0:  # and not mostly hops between look-alikes of the background
+            weight = occurrences.astype(float)
+            moving &= (np.bincount(labels, weights=weight * hopping[clustered], minlength=moving.size)
+                       <= HOP_SHARE * np.bincount(labels, weights=weight, minlength=moving.size))
     own_frames = robust and params.own_frames
     selected = select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
                                params.min_track_length, params.separation, eligible=moving, own_frames=own_frames,

@@ -37,6 +37,8 @@ GRID = 12  # cells per side of the frame, one vote each for the camera's motion
 AGREE_PX = 1.0  # a cell (a pattern) agrees with a camera motion that puts it within this
 MAX_ZOOM_STEP = 1.5  # no camera zooms by half between two frames: a fit that does is degenerate
 MATCH_AREA_RATIO = 1.5  # a region matched in the next frame has at most this ratio of areas to its match
+HOP_SHARE = 0.5  # a pattern with this share of its world path in hops, a cluster with more of its occurrences on such
+# patterns, moves in hops (world_steps)
 
 
 def camera_paths(result: MiningResult, graphs: Sequence[PlaneGraph], observed: ObservedPaths,
@@ -197,11 +199,15 @@ def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, l
     """
     inverse = np.linalg.inv(transforms)
     speed = np.zeros(n_patterns)
-    edges = np.searchsorted(paths.pattern, paths.pattern[::chunk], side="left").tolist() + [len(paths.frame)]
-    for lo, hi in zip(edges[:-1], edges[1:]):
-        if hi > lo:
-            _chunk_speed(paths.pattern[lo:hi], paths.frame[lo:hi], paths.position[lo:hi], inverse, lag, speed)
+    for lo, hi in _whole_patterns(paths.pattern, chunk):
+        _chunk_speed(paths.pattern[lo:hi], paths.frame[lo:hi], paths.position[lo:hi], inverse, lag, speed)
     return speed
+
+
+def _whole_patterns(pattern: np.ndarray, chunk: int) -> list[tuple[int, int]]:
+    """Bounds of runs of about ``chunk`` observations (``pattern``: sorted) that hold whole patterns."""
+    edges = np.searchsorted(pattern, pattern[::chunk], side="left").tolist() + [len(pattern)]
+    return [(lo, hi) for lo, hi in zip(edges[:-1], edges[1:]) if hi > lo]
 
 
 def cluster_world_speed(summary: ClusterSummary, transforms: np.ndarray, lag: int) -> np.ndarray:
@@ -220,14 +226,68 @@ def cluster_world_speed(summary: ClusterSummary, transforms: np.ndarray, lag: in
     return world_speed(observed, transforms, len(frames), lag)
 
 
-def _chunk_speed(pattern: np.ndarray, frame: np.ndarray, position: np.ndarray, inverse: np.ndarray, lag: int,
-                 speed: np.ndarray) -> None:
-    """:func:`world_speed` of the whole patterns of one run of observations, written into ``speed``."""
+def world_steps(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, hop: float, max_gap: int = 2,
+                chunk: int = 1 << 20) -> tuple[np.ndarray, np.ndarray]:
+    """(S,) median over each pattern's observations of its world displacement to the next one,
+    divided by the frames between (at most ``max_gap``; NaN for a pattern never seen so close),
+    and (S,) the share of the pattern's path (the sum of those displacements) made in steps of at
+    least ``hop`` px.
+
+    Beside :func:`world_speed`: an object moves a little every frame, so its steps are at least
+    its speed over many frames (jitter only adds). A chain of background occurrences that the
+    linking took from one look-alike to the next (bricks, tiles, a fence) stands still between
+    hops the size of the texture's spacing; over many frames the hops add up to a speed, yet its
+    median step is that of standing still, and its path is made of hops. (Where the camera's
+    motion is misread, objects too stand still in the world between steps, but those steps are
+    the few px of the error.) Computed on whole patterns of about ``chunk`` observations at a time.
+    """
+    inverse = np.linalg.inv(transforms)
+    steps = np.full(n_patterns, np.nan)
+    path, hopped = np.zeros(n_patterns), np.zeros(n_patterns)
+    for lo, hi in _whole_patterns(paths.pattern, chunk):
+        pattern, frame = paths.pattern[lo:hi], paths.frame[lo:hi]
+        world = _to_world(frame, paths.position[lo:hi], inverse)
+        gap = np.diff(frame)
+        close = (pattern[1:] == pattern[:-1]) & (gap > 0) & (gap <= max_gap)
+        length = np.linalg.norm(world[1:][close] - world[:-1][close], axis=1)
+        owner = pattern[:-1][close]
+        _owner_medians(owner, length / gap[close], steps)
+        path += np.bincount(owner, weights=length, minlength=n_patterns)
+        hopped += np.bincount(owner, weights=length * (length >= hop), minlength=n_patterns)
+    return steps, hopped / np.maximum(path, 1e-12)
+
+
+def _to_world(frame: np.ndarray, position: np.ndarray, inverse: np.ndarray) -> np.ndarray:
+    """(N, 2) ``position`` of frame ``frame`` mapped to the world by that frame's ``inverse`` transform."""
     world = np.empty((len(frame), 2))
     for axis in (0, 1):  # row ``axis`` of each observation's inverse transform, one coefficient at a time
         world[:, axis] = inverse[frame, axis, 2]
         world[:, axis] += inverse[frame, axis, 0] * position[:, 0]
         world[:, axis] += inverse[frame, axis, 1] * position[:, 1]
+    return world
+
+
+def _owner_medians(owner: np.ndarray, value: np.ndarray, out: np.ndarray) -> None:
+    """``out[k]`` = median of the ``value`` s whose ``owner`` is k (non-negative ints), for each owner present."""
+    if owner.size == 0:
+        return
+    base = int(owner.min())
+    local = owner - base
+    # sort by owner, then value: the integer part of the key is the owner (one argsort of floats
+    # is several times faster than a two-key lexsort over millions of observations)
+    order = np.argsort(local + value / (value.max() + 1.0))
+    local, value = local[order], value[order]
+    bounds = np.searchsorted(local, np.arange(int(local[-1]) + 2))
+    count = np.diff(bounds)
+    seen = np.flatnonzero(count)
+    low, high = bounds[seen] + (count[seen] - 1) // 2, bounds[seen] + count[seen] // 2
+    out[base + seen] = 0.5 * (value[low] + value[high])
+
+
+def _chunk_speed(pattern: np.ndarray, frame: np.ndarray, position: np.ndarray, inverse: np.ndarray, lag: int,
+                 speed: np.ndarray) -> None:
+    """:func:`world_speed` of the whole patterns of one run of observations, written into ``speed``."""
+    world = _to_world(frame, position, inverse)
     local = pattern - pattern[0]
     stride = int(frame.max()) + lag + 1
     key = local * stride + frame
@@ -241,13 +301,4 @@ def _chunk_speed(pattern: np.ndarray, frame: np.ndarray, position: np.ndarray, i
     if start.size == 0:
         return
     rate = np.linalg.norm(world[end] - world[start], axis=1) / (frame[end] - frame[start])
-    owner = local[start]
-    # sort by owner, then rate: the integer part of the key is the owner (one argsort of floats
-    # is several times faster than a two-key lexsort over millions of observations)
-    order = np.argsort(owner + rate / (rate.max() + 1.0))
-    owner, rate = owner[order], rate[order]
-    bounds = np.searchsorted(owner, np.arange(int(local[-1]) + 2))
-    count = np.diff(bounds)
-    seen = np.flatnonzero(count)
-    low, high = bounds[seen] + (count[seen] - 1) // 2, bounds[seen] + count[seen] // 2
-    speed[pattern[0] + seen] = 0.5 * (rate[low] + rate[high])
+    _owner_medians(pattern[0] + local[start], rate, speed)

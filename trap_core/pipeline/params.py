@@ -72,10 +72,12 @@ class TrapParams:
                                   "frames, below which patterns (and, over tau frames, clusters) are background "
                                   "(0.0012 = 0.77 px/frame at 640 px; per frame, as the barycentres' jitter it "
                                   "stands above, at any frame rate); 0 = off")
-    steady_steps: float = _p(0.5, "robust: a pattern whose median step from one frame to the next (in the world) is "
-                                  "less than this share of its speed over tau/2 frames moves in hops between still "
-                                  "stretches, a chain linked across look-alikes of the background (bricks, tiles); "
-                                  "a cluster mostly (in occurrences) of such patterns is background; 0 = off")
+    steady_steps: float = _p(0.5, "robust: a pattern whose steps from one frame to the next (in the world) are not "
+                                  "steady, the median under this share of its speed over tau/2 frames (still between "
+                                  "hops) or the mean over its inverse times it (back and forth), with half its path "
+                                  "or more in steps of eps/4, moves in hops between look-alikes of the background "
+                                  "(bricks, tiles); a cluster mostly (in occurrences) of such patterns is "
+                                  "background; 0 = off")
     one_object: bool = _p(True, "robust: a cluster of the cut whose patterns lie on two objects at once (further "
                                 "apart than half their sizes on average, or in tau frames) is split down the "
                                 "hierarchy; a selected cluster's pattern that shares its regions mostly with "

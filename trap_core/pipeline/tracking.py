@@ -69,8 +69,9 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         speed = world_speed(observed, transforms, mined.n_st, max(1, params.tau // 2))
         clustered = np.flatnonzero(speed >= still_below)
         if params.steady_steps > 0:  # NaN steps (never seen in frames close enough) compare False: steady
-            steps, in_hops = world_steps(observed, transforms, mined.n_st, hop=params.eps / 4)
-            hopping = (steps < params.steady_steps * speed) & (in_hops >= HOP_SHARE)
+            median, mean, in_hops = world_steps(observed, transforms, mined.n_st, hop=params.eps / 4)
+            unsteady = (median < params.steady_steps * speed) | (mean > speed / params.steady_steps)
+            hopping = unsteady & (in_hops >= HOP_SHARE)
     seconds["camera"] = time.perf_counter() - start
     start = time.perf_counter()
     sub_paths = trajectories(observed, clustered)

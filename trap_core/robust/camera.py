@@ -227,23 +227,24 @@ def cluster_world_speed(summary: ClusterSummary, transforms: np.ndarray, lag: in
 
 
 def world_steps(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, hop: float, max_gap: int = 2,
-                chunk: int = 1 << 20) -> tuple[np.ndarray, np.ndarray]:
-    """(S,) median over each pattern's observations of its world displacement to the next one,
-    divided by the frames between (at most ``max_gap``; NaN for a pattern never seen so close),
-    and (S,) the share of the pattern's path (the sum of those displacements) made in steps of at
-    least ``hop`` px.
+                chunk: int = 1 << 20) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per pattern, from its world displacements between observations at most ``max_gap`` frames
+    apart: (S,) the median per frame (NaN for a pattern never seen so close), (S,) the mean per
+    frame (its path's length over the frames it spans), and (S,) the share of its path made in
+    steps of at least ``hop`` px.
 
-    Beside :func:`world_speed`: an object moves a little every frame, so its steps are at least
-    its speed over many frames (jitter only adds). A chain of background occurrences that the
-    linking took from one look-alike to the next (bricks, tiles, a fence) stands still between
-    hops the size of the texture's spacing; over many frames the hops add up to a speed, yet its
-    median step is that of standing still, and its path is made of hops. (Where the camera's
-    motion is misread, objects too stand still in the world between steps, but those steps are
-    the few px of the error.) Computed on whole patterns of about ``chunk`` observations at a time.
+    Beside :func:`world_speed`: an object moves a little every frame, so its steps are about its
+    speed over many frames (jitter adds a little). A chain of background occurrences that the
+    linking took from one look-alike to the next (bricks, tiles, a fence) is made of hops the
+    size of the texture's spacing: it stands still between them (its median step is that of
+    standing still), or it hops back and forth (its path is many times what the hops add up to).
+    (Where the camera's motion is misread, objects too stand still in the world between steps,
+    but those steps are the few px of the error.) Computed on whole patterns of about ``chunk``
+    observations at a time.
     """
     inverse = np.linalg.inv(transforms)
-    steps = np.full(n_patterns, np.nan)
-    path, hopped = np.zeros(n_patterns), np.zeros(n_patterns)
+    median = np.full(n_patterns, np.nan)
+    path, frames, hopped = np.zeros(n_patterns), np.zeros(n_patterns), np.zeros(n_patterns)
     for lo, hi in _whole_patterns(paths.pattern, chunk):
         pattern, frame = paths.pattern[lo:hi], paths.frame[lo:hi]
         world = _to_world(frame, paths.position[lo:hi], inverse)
@@ -251,10 +252,11 @@ def world_steps(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, h
         close = (pattern[1:] == pattern[:-1]) & (gap > 0) & (gap <= max_gap)
         length = np.linalg.norm(world[1:][close] - world[:-1][close], axis=1)
         owner = pattern[:-1][close]
-        _owner_medians(owner, length / gap[close], steps)
+        _owner_medians(owner, length / gap[close], median)
         path += np.bincount(owner, weights=length, minlength=n_patterns)
+        frames += np.bincount(owner, weights=gap[close], minlength=n_patterns)
         hopped += np.bincount(owner, weights=length * (length >= hop), minlength=n_patterns)
-    return steps, hopped / np.maximum(path, 1e-12)
+    return median, path / np.maximum(frames, 1), hopped / np.maximum(path, 1e-12)
 
 
 def _to_world(frame: np.ndarray, position: np.ndarray, inverse: np.ndarray) -> np.ndarray:

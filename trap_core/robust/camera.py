@@ -270,7 +270,7 @@ def _to_world(frame: np.ndarray, position: np.ndarray, inverse: np.ndarray) -> n
 
 
 def _owner_medians(owner: np.ndarray, value: np.ndarray, out: np.ndarray) -> None:
-    """``out[k]`` = median of the ``value`` s whose ``owner`` is k (non-negative ints), for each owner present."""
+    """``out[k]`` = the median of the values whose owner is k (owners: non-negative ints), for each owner present."""
     if owner.size == 0:
         return
     base = int(owner.min())

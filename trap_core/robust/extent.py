@@ -81,16 +81,14 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
             moving = np.logical_or.reduce(found) if round_ == 0 else np.logical_and.reduce(found)
             if not np.any(moving):
                 break
-            grown = _around(boxes[i], here.bbox[moving])
+            grown = _around(boxes[i], here.nodes_box(moving))
             if np.array_equal(grown, boxes[i]):
                 break
             boxes[i] = grown
     return dataclasses.replace(track, boxes=boxes)
 
 
-def _around(box: np.ndarray, parts: np.ndarray) -> np.ndarray:
-    """(x, y, w, h) of the box around ``box`` and the region boxes ``parts`` (x0, y0, x1, y1 inclusive)."""
-    x, y, w, h = box
-    x0, y0 = min(x, parts[:, 0].min()), min(y, parts[:, 1].min())
-    x1, y1 = max(x + w - 1, parts[:, 2].max()), max(y + h - 1, parts[:, 3].max())
-    return np.array([x0, y0, x1 - x0 + 1, y1 - y0 + 1])
+def _around(box: np.ndarray, other: np.ndarray) -> np.ndarray:
+    """(x, y, w, h) of the box around two boxes (x, y, w, h)."""
+    corner = np.minimum(box[:2], other[:2])
+    return np.r_[corner, np.maximum(box[:2] + box[2:], other[:2] + other[2:]) - corner]

@@ -23,7 +23,7 @@ import quality  # noqa: E402  (the benchmark sets and their graph cache)
 
 from trap_core.clustering import observed_paths  # noqa: E402
 from trap_core.pipeline import PatternMiner, TrapParams  # noqa: E402
-from trap_core.robust import camera_paths, camera_transforms  # noqa: E402
+from trap_core.robust import camera_paths, camera_transforms, without_backdrop  # noqa: E402
 from trap_core.synthetic import SceneConfig  # noqa: E402
 from trap_core.synthetic.scene import build_world  # noqa: E402
 
@@ -58,7 +58,7 @@ def main() -> None:
             pan = build_world(SceneConfig(**scene)).camera.astype(float)
             cells = []
             with_backdrop = observed_paths(mined)
-            for paths in (with_backdrop, camera_paths(mined, graphs, with_backdrop, params.eps)):
+            for paths in (with_backdrop, camera_paths(graphs, observed_paths(without_backdrop(mined, graphs)), params.eps)):
                 errors = _errors(camera_transforms(paths, len(graphs)), pan)
                 cells.append(f"{np.median(errors):.2f} / {np.percentile(errors, 90):.2f}")
             print(f"| {set_name} | {label} | {largest:.2f} | {cells[0]} | {cells[1]} |", flush=True)

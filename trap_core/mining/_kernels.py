@@ -335,21 +335,29 @@ def occurrence_geometry(sets, he_origin, face_half_edges, face_offsets, centroid
 
 
 @nb.njit(cache=True, nogil=True)
-def positions_without(sets, he_origin, face_half_edges, face_offsets, centroid, left_out):
-    """Per face set: mean barycentre of its distinct nodes but those ``left_out``; NaN where no
-    other node is there."""
+def geometry_without(sets, he_origin, face_half_edges, face_offsets, centroid, bbox, left_out):
+    """Per face set, of its distinct nodes but those ``left_out``: the mean barycentre and the
+    box of their regions (x0, y0, x1, y1); NaN where no other node is there."""
     position = np.full((sets.shape[0], 2), np.nan)
+    box = np.full((sets.shape[0], 4), np.nan)
     nodes = np.empty(64, dtype=np.int64)
     for r in range(sets.shape[0]):
         nodes, n = _set_nodes(sets[r], he_origin, face_half_edges, face_offsets, left_out, nodes)
         if n:
             sx = sy = 0.0
+            box[r, 0] = box[r, 1] = 1e18
+            box[r, 2] = box[r, 3] = -1e18
             for k in range(n):
-                sx += centroid[nodes[k], 0]
-                sy += centroid[nodes[k], 1]
+                node = nodes[k]
+                sx += centroid[node, 0]
+                sy += centroid[node, 1]
+                box[r, 0] = min(box[r, 0], bbox[node, 0])
+                box[r, 1] = min(box[r, 1], bbox[node, 1])
+                box[r, 2] = max(box[r, 2], bbox[node, 2])
+                box[r, 3] = max(box[r, 3], bbox[node, 3])
             position[r, 0] = sx / n
             position[r, 1] = sy / n
-    return position
+    return position, box
 
 
 @nb.njit(cache=True, nogil=True)

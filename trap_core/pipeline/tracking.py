@@ -7,20 +7,20 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from trap_core.clustering import (ClusterSummary, Hierarchy, Track, Trajectories, build_track, cluster_patterns,
-                                  observed_paths, pattern_distances, seen_frames, select_clusters, summarise,
-                                  trajectories, twin_clusters)
+from trap_core.clustering import (ClusterSummary, Hierarchy, ObservedPaths, Track, Trajectories, build_track,
+                                  cluster_patterns, observed_paths, pattern_distances, seen_frames, select_clusters,
+                                  summarise, trajectories, twin_clusters)
 from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.rag import PlaneGraph
-from trap_core.robust import (CUT_SHARE, HOP_SHARE, border_contacts, border_share, camera_paths, camera_transforms,
-                              cluster_world_speed, continue_to_border, continue_tracks, drop_repeated_pieces,
-                              drop_shared_stretches, drop_still_regions, drop_strays, end_at_exits, extend_from_twins,
-                              fill_gaps, grow_boxes, hand_to_owners, join_handovers, keep_one_size, lookalike_tracks,
-                              mend_shared_stretches, merge_duplicates, pattern_sizes, rejoin_fragments,
-                              separate_groups, split_mixed, swap_at_crossings, whole_patterns_apart, world_speed,
-                              world_steps)
+from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, border_contacts, border_share,
+                              camera_paths, camera_transforms, cluster_world_speed, continue_to_border, continue_tracks,
+                              drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_strays,
+                              end_at_exits, extend_from_twins, fill_gaps, grow_boxes, hand_to_owners, held_share,
+                              join_handovers, keep_one_size, lookalike_tracks, mend_shared_stretches, merge_duplicates,
+                              pattern_sizes, rejoin_fragments, separate_groups, shadowed, split_mixed,
+                              swap_at_crossings, whole_patterns_apart, without_backdrop, world_speed, world_steps)
 
 
 @dataclass
@@ -62,47 +62,89 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     start = time.perf_counter()
     observed = observed_paths(mined)  # each pattern's mean position per frame: speeds and trajectories
     clustered = np.arange(mined.n_st)
-    transforms = (camera_transforms(camera_paths(mined, graphs, observed, params.eps), n_frames)
-                  if robust and (params.min_speed > 0 or params.grow or params.still_regions) else None)
+    transforms = None
+    free, free_observed = mined, observed
+    if robust:  # where the backdrop is, occurrences are placed and boxed without it (robust.backdrop)
+        free = without_backdrop(mined, graphs)
+        free_observed = observed if free is mined else observed_paths(free)
+    if robust and (params.min_speed > 0 or params.grow or params.still_regions):
+        transforms = camera_transforms(camera_paths(graphs, free_observed, params.eps), n_frames)
     still_below = params.min_speed * width  # px per frame
     if robust and params.min_speed > 0:
-        speed = world_speed(observed, transforms, mined.n_st, max(1, params.tau // 2))
+        speed, unsteady, in_hops = _pattern_motion(observed, transforms, mined.n_st, params)
+        hopping = unsteady & (in_hops >= HOP_SHARE)  # between look-alikes of the background
         clustered = np.flatnonzero(speed >= still_below)
-        if params.steady_steps > 0:  # NaN steps (never seen in frames close enough) compare False: steady
-            median, mean, in_hops = world_steps(observed, transforms, mined.n_st, hop=params.eps / 4)
-            unsteady = (median < params.steady_steps * speed) | (mean > speed / params.steady_steps)
-            hopping = unsteady & (in_hops >= HOP_SHARE)
     seconds["camera"] = time.perf_counter() - start
-    start = time.perf_counter()
+    seconds["distances"] = 0.0  # clustering: everything after the camera but the pattern distances
+    after_camera = time.perf_counter()
+
+    def cluster(patterns: np.ndarray, result: MiningResult, paths: Trajectories) -> tuple[Hierarchy, np.ndarray]:
+        """Clusters of ``patterns`` (``paths``: their trajectories; their sizes and border contacts
+        from ``result``): the lifetime cut, then with the robust method clusters that mix objects
+        split and fragments of one object rejoined."""
+        start = time.perf_counter()
+        distances = pattern_distances(paths)
+        seconds["distances"] += time.perf_counter() - start
+        hierarchy = cluster_patterns(distances, len(paths), params.linkage, params.ignore_top)
+        labels = hierarchy.labels
+        if robust and params.one_object:
+            labels = split_mixed(hierarchy, distances, paths, pattern_sizes(result, patterns), params.tau)
+        if robust and params.rejoin:
+            labels = rejoin_fragments(labels, paths, mined.st_pattern[patterns], n_frames,
+                                      params.rejoin_similarity, params.tau,
+                                      border_contacts(result, patterns, width, height, lag=max(1, params.tau // 2),
+                                                      reach=params.tau),
+                                      mined.st_occurrences[patterns], transforms,
+                                      adjacent_gap=max(1, params.tau // 10), adjacent_reach=params.eps / 4,
+                                      lone_gap=params.tau, max_apart=params.eps)
+        return hierarchy, labels
+
     sub_paths = trajectories(observed, clustered)
-    distances = pattern_distances(sub_paths)
-    seconds["distances"] = time.perf_counter() - start
-    start = time.perf_counter()
-    hierarchy = cluster_patterns(distances, len(sub_paths), params.linkage, params.ignore_top)
-    labels = hierarchy.labels
-    if robust and params.one_object:
-        labels = split_mixed(hierarchy, distances, sub_paths, pattern_sizes(mined, clustered), params.tau)
+    hierarchy, labels = cluster(clustered, mined, sub_paths)
     occurrences = mined.st_occurrences[clustered]
-    if robust and params.rejoin:
-        labels = rejoin_fragments(labels, sub_paths, mined.st_pattern[clustered], n_frames,
-                                  params.rejoin_similarity, params.tau,
-                                  border_contacts(mined, clustered, width, height, lag=max(1, params.tau // 2),
-                                                  reach=params.tau),
-                                  occurrences, transforms,
-                                  adjacent_gap=max(1, params.tau // 10), adjacent_reach=params.eps / 4,
-                                  max_apart=params.eps)
     if robust and params.min_speed > 0:  # an object's patterns out of a cluster mostly cut by the view
         labels = whole_patterns_apart(mined, clustered, labels, width, height)
     summary = summarise(labels, sub_paths, occurrences, n_frames)
     moving = None
-    if robust and params.min_speed > 0:  # the whole cluster too: averaged, noise no longer passes for motion;
-        # and mostly seen whole (a large region cut by the view "moves" as the camera pans)
-        moving = ((cluster_world_speed(summary, transforms, params.tau) >= still_below)
-                  & (border_share(mined, clustered, labels, width, height) <= CUT_SHARE))
-        if params.steady_steps > 0:  # and not mostly hops between look-alikes of the background
+    if robust and params.min_speed > 0:
+        def moving_clusters(result: MiningResult, paths_summary: ClusterSummary, against: np.ndarray) -> np.ndarray:
+            """Clusters that move relative to the camera as a whole (averaged, noise no longer passes
+            for motion), are mostly seen whole (a large region cut by the view "moves" as the camera
+            pans), and have at most ``HOP_SHARE`` of their occurrences on patterns ``against`` them."""
             weight = occurrences.astype(float)
-            moving &= (np.bincount(labels, weights=weight * hopping[clustered], minlength=moving.size)
-                       <= HOP_SHARE * np.bincount(labels, weights=weight, minlength=moving.size))
+            return ((cluster_world_speed(paths_summary, transforms, params.tau) >= still_below)
+                    & (border_share(result, clustered, labels, width, height) <= CUT_SHARE)
+                    & (np.bincount(labels, weights=weight * against[clustered], minlength=len(paths_summary.length))
+                       <= HOP_SHARE * np.bincount(labels, weights=weight, minlength=len(paths_summary.length))))
+
+        def seen_without_backdrop(moving: np.ndarray) -> np.ndarray:
+            """Clusters not ``moving`` that mostly hold the backdrop and, placed without it, move
+            steadily, where no moving cluster goes (:mod:`trap_core.robust.backdrop`)."""
+            free_summary = summarise(labels, trajectories(free_observed, clustered), occurrences, n_frames)
+            again = (~moving & (held_share(mined, free, clustered, labels) > HELD_SHARE)
+                     & moving_clusters(free, free_summary, wandering))
+            again[again] = shadowed(free_summary, np.flatnonzero(again), np.flatnonzero(moving),
+                                    params.eps) <= SHADOWED_SHARE
+            return again
+
+        moving = moving_clusters(mined, summary, hopping)
+        if free is not mined and moving.size:  # a plain scene: objects may have no face without the backdrop
+            # placed without it, the specks of a textured backdrop jitter: a pattern that does not
+            # move steadily (slow, in hops or unsteady steps) counts against its cluster
+            free_speed, free_unsteady, free_in_hops = _pattern_motion(free_observed, transforms, mined.n_st, params)
+            wandering = (free_speed < still_below) | free_unsteady | (free_in_hops >= HOP_SHARE)
+            again = seen_without_backdrop(moving)
+            if again.any():  # clustered again on their own, placed without the backdrop
+                apart = np.flatnonzero(again[labels])
+                free_paths = trajectories(free_observed, clustered[apart])
+                labels = labels.copy()
+                labels[apart] = labels.max() + 1 + cluster(clustered[apart], free, free_paths)[1]
+                labels = np.unique(labels, return_inverse=True)[1]
+                sub_paths = _with_paths(sub_paths, apart, free_paths)
+                summary = summarise(labels, sub_paths, occurrences, n_frames)
+                moving = moving_clusters(mined, summarise(labels, trajectories(observed, clustered), occurrences,
+                                                          n_frames), hopping)
+                moving |= seen_without_backdrop(moving)
     own_frames = robust and params.own_frames
     selected = select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
                                params.min_track_length, params.separation, eligible=moving, own_frames=own_frames,
@@ -172,5 +214,28 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
             tracks = keep_one_size(tracks, params.tau, int(params.min_track_length * n_frames))
     if robust and params.to_border:
         tracks = [continue_to_border(t, n_frames, width, height, motion_window, 2 * params.tau) for t in tracks]
-    seconds["clustering"] = time.perf_counter() - start
+    seconds["clustering"] = time.perf_counter() - after_camera - seconds["distances"]
     return TrackingResult(mined, sub_paths, clustered, hierarchy, summary, selected, tracks, all_labels, seconds)
+
+
+
+def _pattern_motion(observed: ObservedPaths, transforms: np.ndarray, n_patterns: int,
+                    params: TrapParams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per pattern, from its ``observed`` path: its world speed over tau/2 frames (px a frame),
+    whether its frame-to-frame steps are unsteady for that speed, and the share of its path made
+    in hops of eps/4 (:func:`trap_core.robust.world_steps`; neither with ``steady_steps`` 0).
+    NaN steps (never seen in frames close enough) compare False: steady."""
+    speed = world_speed(observed, transforms, n_patterns, max(1, params.tau // 2))
+    if params.steady_steps <= 0:
+        return speed, np.zeros(n_patterns, dtype=bool), np.zeros(n_patterns)
+    median, mean, in_hops = world_steps(observed, transforms, n_patterns, hop=params.eps / 4)
+    unsteady = (median < params.steady_steps * speed) | (mean > speed / params.steady_steps)
+    return speed, unsteady, in_hops
+
+
+def _with_paths(paths: Trajectories, rows: np.ndarray, replacements: Trajectories) -> Trajectories:
+    """``paths`` with its trajectories ``rows`` replaced by those of ``replacements`` (in order)."""
+    sources = [(paths, row) for row in range(len(paths))]
+    for k, row in enumerate(rows):
+        sources[row] = (replacements, k)
+    return Trajectories.pack([int(source.start[k]) for source, k in sources], [source.of(k) for source, k in sources])

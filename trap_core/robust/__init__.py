@@ -2,6 +2,8 @@
 track boxes without the background and where objects meet."""
 
 from trap_core.clustering import reaches_border
+from trap_core.robust.backdrop import (HELD_SHARE, SHADOWED_SHARE, held_share, shadowed,
+                                       without_backdrop)
 from trap_core.robust.borders import continue_to_border, end_at_exits
 from trap_core.robust.camera import (HOP_SHARE, camera_paths, camera_transforms, cluster_world_speed, world_speed,
                                      world_steps)
@@ -19,10 +21,10 @@ from trap_core.robust.sizes import keep_one_size
 from trap_core.robust.still import drop_still_regions
 from trap_core.robust.strays import drop_strays
 
-__all__ = ["CUT_SHARE", "HOP_SHARE", "BorderContacts", "border_contacts", "border_share", "camera_paths",
-           "camera_transforms", "cluster_world_speed", "continue_to_border", "continue_tracks", "drop_repeated_pieces",
-           "drop_shared_stretches", "drop_still_regions", "drop_strays", "end_at_exits", "extend_from_twins",
-           "fill_gaps", "grow_boxes", "hand_to_owners", "join_handovers", "keep_one_size", "lookalike_tracks",
-           "mend_shared_stretches", "merge_duplicates", "pattern_sizes", "reaches_border", "rejoin_fragments",
-           "separate_groups", "split_mixed", "swap_at_crossings", "whole_patterns_apart", "world_speed",
-           "world_steps"]
+__all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderContacts", "border_contacts",
+           "border_share", "camera_paths", "camera_transforms", "cluster_world_speed", "continue_to_border",
+           "continue_tracks", "drop_repeated_pieces", "drop_shared_stretches", "drop_still_regions", "drop_strays",
+           "end_at_exits", "extend_from_twins", "fill_gaps", "grow_boxes", "hand_to_owners", "held_share",
+           "join_handovers", "keep_one_size", "lookalike_tracks", "mend_shared_stretches", "merge_duplicates",
+           "pattern_sizes", "reaches_border", "rejoin_fragments", "separate_groups", "shadowed", "split_mixed",
+           "swap_at_crossings", "whole_patterns_apart", "without_backdrop", "world_speed", "world_steps"]

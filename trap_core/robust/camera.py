@@ -14,22 +14,19 @@ background patterns stand still and objects move.
 Over a plain scene (sky, sea, asphalt, a smooth photograph) one region, the backdrop, covers
 most of the frame, and most faces hold it. Its barycentre stays near the middle of the view
 wherever the camera goes, so positions that average it in move less than the scene does:
-:func:`camera_paths` leaves it out of the positions the transforms are fitted to. Over such a
+:func:`camera_paths` is given positions without it (:func:`~trap_core.robust.backdrop.without_backdrop`). Over such a
 scene the background also forms few frequent patterns (its specks and streaks are islands in
 the backdrop), and the objects' patterns then outvote it: :func:`camera_paths` adds every
 region that can be matched to one in the next frame as a two-frame path of its own.
 """
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Sequence
 
 import cv2
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, ObservedPaths, observed_paths, reaches_border
-from trap_core.mining import MiningResult
-from trap_core.mining._kernels import positions_without
+from trap_core.clustering import ClusterSummary, ObservedPaths, reaches_border
 from trap_core.robust._kernels import matched_regions
 from trap_core.rag import PlaneGraph
 
@@ -41,14 +38,12 @@ HOP_SHARE = 0.5  # a pattern with this share of its world path in hops, a cluste
 # patterns, moves in hops (world_steps)
 
 
-def camera_paths(result: MiningResult, graphs: Sequence[PlaneGraph], observed: ObservedPaths,
-                 reach: float) -> ObservedPaths:
-    """The paths :func:`camera_transforms` is fitted to: the patterns' ``observed`` paths
-    (:func:`trap_core.clustering.observed_paths` of ``result``), with their occurrences placed
-    without the backdrop (:attr:`trap_core.rag.PlaneGraph.backdrop`) where they hold other
-    regions, and the regions matched from frame to frame (:func:`_region_steps`, at most
-    ``reach`` px apart) as paths of their own. ``graphs[i]`` is the frame of the occurrences with
-    ``occ_frame == i``.
+def camera_paths(graphs: Sequence[PlaneGraph], observed: ObservedPaths, reach: float) -> ObservedPaths:
+    """The paths :func:`camera_transforms` is fitted to: the patterns' ``observed`` paths, which
+    the caller places without the backdrop (:func:`~trap_core.clustering.observed_paths` of
+    :func:`~trap_core.robust.backdrop.without_backdrop`),
+    and the regions matched from frame to frame (:func:`_region_steps`, at most ``reach`` px
+    apart) as paths of their own. ``graphs[i]`` is frame ``i``.
 
     Over four photographs with a backdrop, the camera's motion read from positions with it was
     0.36-0.96 px a frame off the true pan (median over 12-frame windows), and 0.00 without it.
@@ -56,33 +51,11 @@ def camera_paths(result: MiningResult, graphs: Sequence[PlaneGraph], observed: O
     held most patterns and the motion read from them was 1.74 px a frame off; with the
     regions, 0.47 (``benchmarks/camera_motion.py``).
     """
-    backdrops = [graph.backdrop for graph in graphs]
-    if any(backdrop.any() for backdrop in backdrops):
-        observed = _without_backdrop(result, graphs, backdrops)
     first_id = int(observed.pattern.max()) + 1 if observed.pattern.size else 0
-    steps = _region_steps(graphs, backdrops, reach, first_id)
+    steps = _region_steps(graphs, [graph.backdrop for graph in graphs], reach, first_id)
     return ObservedPaths(np.concatenate([observed.pattern, steps.pattern]),
                          np.concatenate([observed.frame, steps.frame]),
                          np.concatenate([observed.position, steps.position]))
-
-
-def _without_backdrop(result: MiningResult, graphs: Sequence[PlaneGraph], backdrops: list[np.ndarray],
-                      ) -> ObservedPaths:
-    """Observed paths of ``result`` with each occurrence placed at the mean barycentre of its
-    regions but the backdrop (``backdrops[i]``: the backdrop regions of frame ``i``), where it
-    holds others."""
-    moved = result.occ_position.copy()
-    order = np.argsort(result.occ_frame, kind="stable")
-    bounds = np.searchsorted(result.occ_frame[order], np.arange(len(graphs) + 1))
-    for frame, (graph, backdrop) in enumerate(zip(graphs, backdrops)):
-        rows = order[bounds[frame]:bounds[frame + 1]]
-        if not backdrop.any() or rows.size == 0:
-            continue
-        placed = positions_without(result.occ_faces[rows], graph.he_origin, graph.face_half_edges,
-                                   graph.face_offsets, graph.centroid, backdrop)
-        found = ~np.isnan(placed[:, 0])
-        moved[rows[found]] = placed[found]
-    return observed_paths(dataclasses.replace(result, occ_position=moved))
 
 
 def _region_steps(graphs: Sequence[PlaneGraph], backdrops: list[np.ndarray], reach: float,

@@ -11,7 +11,10 @@ among all such pairs, the later one starts closest to where the earlier one's mo
 (steady in the view or, with the camera's motion, in the world); pairs are joined greedily,
 closest first, and a joined cluster can no longer take a fragment that overlaps it, which
 keeps look-alike objects apart. A fragment that starts right where and when another ends
-is a candidate even without shared structures (noise can change them all at once). With the
+is a candidate even without shared structures (noise can change them all at once), and so is
+one that starts a little later where the other's motion puts it when no third fragment comes
+nearly as close to continuing either: look-alikes that cross break their patterns where they
+meet and come back showing others (a disc's small regions blend with its neighbour's). With the
 fragments' border contacts, a fragment that left the view (its last box at the image border,
 going out) continues only one that enters it (first box at the border, coming in), and one
 that vanished inside the view (occluded) only one that appears inside it: an object comes back
@@ -54,6 +57,7 @@ class BorderContacts(NamedTuple):
 ALONG_FRAMES = 4
 ALONG_SHARE = 0.8
 PAIR_CELLS = 1 << 21  # pairs x frames compared at once by _going_along
+RIVAL_RATIO = 2.0  # a fragment continues another whatever its structures only where no rival comes this close
 CUT_SHARE = 0.5  # a cluster (pattern) with more of its occurrences cut by the view is no evidence of motion
 
 
@@ -76,7 +80,8 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
                      min_similarity: float = 0.3, max_overlap: int = 25,
                      at_border: BorderContacts | None = None,
                      weights: np.ndarray | None = None, transforms: np.ndarray | None = None,
-                     adjacent_gap: int = 0, adjacent_reach: float = 0.0, max_apart: float = np.inf) -> np.ndarray:
+                     adjacent_gap: int = 0, adjacent_reach: float = 0.0, lone_gap: int = 0,
+                     max_apart: float = np.inf) -> np.ndarray:
     """Cluster labels (0..C'-1) after joining fragments of the same object.
 
     Candidate pairs and their costs are computed once on the fragments; they are then taken
@@ -91,7 +96,9 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     earlier one's motion in the world puts it (:func:`_prediction_errors`). A fragment that
     starts at most ``adjacent_gap`` frames after another ends, at most ``adjacent_reach`` px
     from where its motion puts it, is a candidate whatever its structures: an object does not
-    jump, but a noisy one can change every structure it shows from one frame to the next.
+    jump, but a noisy one can change every structure it shows from one frame to the next. So is
+    one that starts up to ``lone_gap`` frames later within that reach, when no other pair of
+    either fragment has a prediction error under ``RIVAL_RATIO`` times its own.
     Groups seen in the same frames more than ``max_apart`` px apart (on average over those
     frames) are two objects, whatever else they share: they are not joined. Neither are two
     fragments when one goes along with clusters (:func:`_going_along`) that are mostly seen
@@ -107,7 +114,8 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     overlap = covered @ covered.T
     start = summary.paths.start
     timed = (start[:, None] < start[None, :]) & (overlap <= max_overlap)
-    adjacent = timed & (start[None, :] - summary.paths.end[:, None] <= adjacent_gap) & (adjacent_reach > 0)
+    gap = start[None, :] - summary.paths.end[:, None]
+    adjacent = timed & (gap <= max(adjacent_gap, lone_gap)) & (adjacent_reach > 0)
     candidate = timed & ((similarity >= min_similarity) | adjacent)
     if at_border is not None:
         enters, from_border = (_flag_near(labels, paths.start, summary.paths.start, flags, max_overlap)
@@ -117,7 +125,8 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
         candidate &= (to_border[:, None] & from_border[None, :]) | (~leaves[:, None] & ~enters[None, :])
     earlier, later = np.nonzero(candidate)
     costs = _prediction_errors(summary.paths, earlier, later, transforms)
-    keep = (similarity[earlier, later] >= min_similarity) | (costs <= adjacent_reach)
+    keep = (similarity[earlier, later] >= min_similarity) | ((costs <= adjacent_reach) & (
+        (gap[earlier, later] <= adjacent_gap) | _unrivalled(earlier, later, costs, n_clusters)))
     earlier, later, costs = earlier[keep], later[keep], costs[keep]
     unsure = np.zeros(costs.size, dtype=bool) if at_border is None else leaves[earlier] != enters[later]
     group = np.arange(n_clusters)
@@ -229,6 +238,32 @@ def _prediction_errors(paths: Trajectories, earlier: np.ndarray, later: np.ndarr
         return error
     seen = map_points(transforms[paths.start[later]], last_in_world[slot] + velocity_in_world[slot] * gap)
     return np.minimum(error, np.linalg.norm(arrival - seen, axis=1))
+
+
+def _unrivalled(earlier: np.ndarray, later: np.ndarray, costs: np.ndarray, n_clusters: int) -> np.ndarray:
+    """Per pair: no other pair of its earlier or of its later fragment costs less than
+    ``RIVAL_RATIO`` times it. Look-alikes that cross break their patterns where they meet, and
+    each fragment that ends there then has as many continuations as there are look-alikes."""
+    rival = np.full(costs.size, np.inf)
+    for ends in (earlier, later):
+        lowest, next_lowest = _two_lowest(ends, costs, n_clusters)
+        other = np.where(costs <= lowest[ends], next_lowest[ends], lowest[ends])
+        rival = np.minimum(rival, other)
+    return rival > RIVAL_RATIO * costs
+
+
+def _two_lowest(keys: np.ndarray, costs: np.ndarray, n_keys: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per key 0..n_keys-1: the lowest and the second lowest of its ``costs`` (inf where none)."""
+    lowest, second = np.full(n_keys, np.inf), np.full(n_keys, np.inf)
+    if keys.size == 0:
+        return lowest, second
+    order = np.lexsort((costs, keys))
+    keys, costs = keys[order], costs[order]
+    first = np.r_[True, keys[1:] != keys[:-1]]
+    lowest[keys[first]] = costs[first]
+    runner_up = np.flatnonzero(first[:-1] & ~first[1:]) + 1
+    second[keys[runner_up]] = costs[runner_up]
+    return lowest, second
 
 
 def _steady(tail: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -1,0 +1,85 @@
+"""Over a plain scene (ours): the backdrop left out of occurrences, and clusters judged so.
+
+Over sky, sea, asphalt or a smooth photograph one region, the backdrop
+(:attr:`trap_core.rag.PlaneGraph.backdrop`), covers most of the view. Its barycentre stays near
+the middle of the view and its box is the frame's wherever the camera goes. An object made of
+one or two regions (a disc, a boat) has no face without it: every pattern on it holds the
+backdrop, so it is seen cut by the view and moving partly with the camera, like the background.
+Without the backdrop it is whole and moves; the tracker looks at such clusters again
+(:func:`trap_core.pipeline.track`), and takes one only where no cluster that moves as it is
+already follows the same path (:func:`shadowed`): objects with faces of their own have patterns
+that hold the backdrop too, and those must not make second tracks.
+"""
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Sequence
+
+import numpy as np
+
+from trap_core.clustering import ClusterSummary
+from trap_core.mining import MiningResult
+from trap_core.mining._kernels import geometry_without
+from trap_core.rag import PlaneGraph
+
+HELD_SHARE = 0.5  # a cluster with more of its occurrences holding the backdrop may be an object seen only through it
+SHADOWED_SHARE = 0.5  # a cluster seen again without the backdrop is taken where at most this share of it is shadowed
+
+
+def without_backdrop(result: MiningResult, graphs: Sequence[PlaneGraph]) -> MiningResult:
+    """``result`` with each occurrence that holds the backdrop (:attr:`PlaneGraph.backdrop`) and
+    other regions placed at the mean barycentre of the others and boxed around them
+    (``result`` itself where no frame has a backdrop). ``graphs[i]`` is frame ``i``.
+
+    The backdrop's barycentre stays near the middle of the view and its box is the frame's,
+    wherever the camera goes: where it is in, an occurrence's position moves partly with the
+    view and its box reaches the image's edge whatever the rest does."""
+    backdrops = [graph.backdrop for graph in graphs]
+    if not any(backdrop.any() for backdrop in backdrops):
+        return result
+    position = result.occ_position.copy()
+    box = result.occ_box.copy()
+    order = np.argsort(result.occ_frame, kind="stable")
+    bounds = np.searchsorted(result.occ_frame[order], np.arange(len(graphs) + 1))
+    for frame, (graph, backdrop) in enumerate(zip(graphs, backdrops)):
+        rows = order[bounds[frame]:bounds[frame + 1]]
+        if not backdrop.any() or rows.size == 0:
+            continue
+        placed, boxed = geometry_without(result.occ_faces[rows], graph.he_origin, graph.face_half_edges,
+                                         graph.face_offsets, graph.centroid, graph.bbox, backdrop)
+        found = ~np.isnan(placed[:, 0])
+        position[rows[found]] = placed[found]
+        box[rows[found]] = boxed[found]
+    return dataclasses.replace(result, occ_position=position, occ_box=box)
+
+
+def shadowed(summary: ClusterSummary, clusters: np.ndarray, others: np.ndarray, reach: float) -> np.ndarray:
+    """Per cluster of ``clusters``: the share of the frames it covers where one of ``others`` is
+    seen too, its mean path within ``reach`` px (``summary`` holds both)."""
+    mine, theirs = _dense_paths(summary, clusters), _dense_paths(summary, others)
+    near = np.zeros(mine.shape[:2], dtype=bool)
+    for frame in range(mine.shape[1]):  # frame by frame: few clusters are seen in any one
+        here, there = np.flatnonzero(~np.isnan(mine[:, frame, 0])), ~np.isnan(theirs[:, frame, 0])
+        if here.size and there.any():
+            gaps = np.linalg.norm(mine[here, frame, None] - theirs[there, frame][None], axis=2)
+            near[here, frame] = (gaps <= reach).any(axis=1)
+    return near.sum(axis=1) / np.maximum(summary.covered[clusters].sum(axis=1), 1)
+
+
+def _dense_paths(summary: ClusterSummary, clusters: np.ndarray) -> np.ndarray:
+    """(len(clusters), n_frames, 2) the clusters' mean paths, NaN in the frames they do not cover."""
+    dense = np.full((clusters.size, summary.covered.shape[1], 2), np.nan, dtype=np.float32)
+    for k, cluster in enumerate(clusters):
+        frames = np.flatnonzero(summary.covered[cluster])
+        dense[k, frames] = summary.paths.at(int(cluster), frames)
+    return dense
+
+
+def held_share(result: MiningResult, free: MiningResult, patterns: np.ndarray, labels: np.ndarray) -> np.ndarray:
+    """(C,) share of each cluster's occurrences (``labels``: cluster of each of ``patterns``) that
+    hold the backdrop and other regions: those :func:`without_backdrop` boxed anew (``free``)."""
+    rows, owner = result.rows_of(patterns)
+    held = np.any(free.occ_box[rows] != result.occ_box[rows], axis=1)
+    n_clusters = int(labels.max()) + 1 if labels.size else 0
+    return (np.bincount(labels[owner], weights=held, minlength=n_clusters)
+            / np.maximum(np.bincount(labels[owner], minlength=n_clusters), 1))

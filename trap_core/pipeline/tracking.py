@@ -28,7 +28,8 @@ class TrackingResult:
     """Everything a run produced, for outputs, evaluation and pictures."""
 
     mining: MiningResult
-    trajectories: Trajectories  # of the clustered patterns (hierarchy leaves), in the order of ``clustered``
+    trajectories: Trajectories  # of the clustered patterns, in the order of ``clustered`` (hierarchy leaves,
+    # but those clustered again without the backdrop: their trajectories are placed without it)
     clustered: np.ndarray       # spatio-temporal patterns that were clustered
     hierarchy: Hierarchy
     summary: ClusterSummary
@@ -46,7 +47,9 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
 
     ``method="paper"``: every spatio-temporal pattern is clustered. ``"robust"`` (ours): one path
     per object when linking occurrences, only patterns that move relative to the camera's
-    motion are clustered, and fragments of one object are rejoined across gaps.
+    motion are clustered, and fragments of one object are rejoined across gaps; over a plain
+    scene, clusters that move only once the backdrop is left out of their occurrences are
+    clustered again without it (:mod:`trap_core.robust.backdrop`).
     """
     seconds: dict[str, float] = {}
     n_frames = len(graphs)

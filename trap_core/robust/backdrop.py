@@ -5,10 +5,13 @@ Over sky, sea, asphalt or a smooth photograph one region, the backdrop
 the middle of the view and its box is the frame's wherever the camera goes. An object made of
 one or two regions (a disc, a boat) has no face without it: every pattern on it holds the
 backdrop, so it is seen cut by the view and moving partly with the camera, like the background.
-Without the backdrop it is whole and moves; the tracker looks at such clusters again
-(:func:`trap_core.pipeline.track`), and takes one only where no cluster that moves as it is
-already follows the same path (:func:`shadowed`): objects with faces of their own have patterns
-that hold the backdrop too, and those must not make second tracks.
+Without the backdrop it is whole and moves. :func:`trap_core.pipeline.track` looks again at the
+clusters that fail as they are but mostly hold the backdrop (:func:`held_share`): placed and
+boxed without it (:func:`without_backdrop`), one is taken if it moves, is mostly whole, is
+mostly made of patterns that move steadily (without the backdrop the specks of a textured
+ground jitter), and no cluster that moves as it is already follows the same path
+(:func:`shadowed`: objects with faces of their own have patterns that hold the backdrop too, and
+those must not make second tracks). Such clusters are clustered again on their own, placed so.
 """
 from __future__ import annotations
 

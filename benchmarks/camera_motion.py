@@ -58,7 +58,8 @@ def main() -> None:
             pan = build_world(SceneConfig(**scene)).camera.astype(float)
             cells = []
             with_backdrop = observed_paths(mined)
-            for paths in (with_backdrop, camera_paths(graphs, observed_paths(without_backdrop(mined, graphs)), params.eps)):
+            read = camera_paths(graphs, observed_paths(without_backdrop(mined, graphs)), params.eps)
+            for paths in (with_backdrop, read):
                 errors = _errors(camera_transforms(paths, len(graphs)), pan)
                 cells.append(f"{np.median(errors):.2f} / {np.percentile(errors, 90):.2f}")
             print(f"| {set_name} | {label} | {largest:.2f} | {cells[0]} | {cells[1]} |", flush=True)

@@ -67,10 +67,9 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     clustered = np.arange(mined.n_st)
     transforms = None
     free, free_observed = mined, observed
-    if robust:  # where the backdrop is, occurrences are placed and boxed without it (robust.backdrop)
-        free = without_backdrop(mined, graphs)
-        free_observed = observed if free is mined else observed_paths(free)
     if robust and (params.min_speed > 0 or params.grow or params.still_regions):
+        free = without_backdrop(mined, graphs)  # where the backdrop is, occurrences placed and boxed without it
+        free_observed = observed if free is mined else observed_paths(free)
         transforms = camera_transforms(camera_paths(graphs, free_observed, params.eps), n_frames)
     still_below = params.min_speed * width  # px per frame
     if robust and params.min_speed > 0:
@@ -123,7 +122,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         def seen_without_backdrop(moving: np.ndarray) -> np.ndarray:
             """Clusters not ``moving`` that mostly hold the backdrop and, placed without it, move
             steadily, where no moving cluster goes (:mod:`trap_core.robust.backdrop`)."""
-            free_summary = summarise(labels, trajectories(free_observed, clustered), occurrences, n_frames)
+            free_summary = summarise(labels, free_paths, occurrences, n_frames)
             again = (~moving & (held_share(mined, free, clustered, labels) > HELD_SHARE)
                      & moving_clusters(free, free_summary, wandering))
             again[again] = shadowed(free_summary, np.flatnonzero(again), np.flatnonzero(moving),
@@ -136,18 +135,17 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
             # move steadily (slow, in hops or unsteady steps) counts against its cluster
             free_speed, free_unsteady, free_in_hops = _pattern_motion(free_observed, transforms, mined.n_st, params)
             wandering = (free_speed < still_below) | free_unsteady | (free_in_hops >= HOP_SHARE)
+            free_paths = trajectories(free_observed, clustered)
             again = seen_without_backdrop(moving)
             if again.any():  # clustered again on their own, placed without the backdrop
                 apart = np.flatnonzero(again[labels])
-                free_paths = trajectories(free_observed, clustered[apart])
                 labels = labels.copy()
-                labels[apart] = labels.max() + 1 + cluster(clustered[apart], free, free_paths)[1]
+                labels[apart] = labels.max() + 1 + cluster(clustered[apart], free, free_paths.subset(apart))[1]
                 labels = np.unique(labels, return_inverse=True)[1]
+                moving = moving_clusters(mined, summarise(labels, sub_paths, occurrences, n_frames), hopping)
+                moving |= seen_without_backdrop(moving)
                 sub_paths = _with_paths(sub_paths, apart, free_paths)
                 summary = summarise(labels, sub_paths, occurrences, n_frames)
-                moving = moving_clusters(mined, summarise(labels, trajectories(observed, clustered), occurrences,
-                                                          n_frames), hopping)
-                moving |= seen_without_backdrop(moving)
     own_frames = robust and params.own_frames
     selected = select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
                                params.min_track_length, params.separation, eligible=moving, own_frames=own_frames,
@@ -236,9 +234,9 @@ def _pattern_motion(observed: ObservedPaths, transforms: np.ndarray, n_patterns:
     return speed, unsteady, in_hops
 
 
-def _with_paths(paths: Trajectories, rows: np.ndarray, replacements: Trajectories) -> Trajectories:
-    """``paths`` with its trajectories ``rows`` replaced by those of ``replacements`` (in order)."""
-    sources = [(paths, row) for row in range(len(paths))]
-    for k, row in enumerate(rows):
-        sources[row] = (replacements, k)
-    return Trajectories.pack([int(source.start[k]) for source, k in sources], [source.of(k) for source, k in sources])
+def _with_paths(paths: Trajectories, rows: np.ndarray, others: Trajectories) -> Trajectories:
+    """``paths`` with its trajectories ``rows`` taken from ``others`` (trajectories of the same patterns)."""
+    source = [paths] * len(paths)
+    for row in rows:
+        source[row] = others
+    return Trajectories.pack([int(s.start[k]) for k, s in enumerate(source)], [s.of(k) for k, s in enumerate(source)])

@@ -1244,6 +1244,28 @@ def test_lookalikes_that_traded_objects_where_they_crossed_get_them_back() -> No
     np.testing.assert_allclose(side_by_side[0].boxes, a)
 
 
+def test_lookalikes_traded_where_one_track_held_a_blend_of_both_get_them_back() -> None:
+    """Two look-alikes cross at frame 50. Track 1 goes on with the other object at once; track 2
+    lingers for twelve frames on a blend of both, nearer its own (no line right after a cut
+    fits either pairing), then takes track 1's object. Both tracks start in frame 40, when the
+    objects are already close: no line can be drawn before their meeting. The lines after the
+    cut are read past the blend, and each track gets its own object back (where boxes never
+    blend, no lines are read past the cut: the next test)."""
+    from trap_core.robust import swap_at_crossings
+    t = np.arange(100, dtype=float)
+    size = np.tile([40.0, 30.0], (100, 1))
+    right = np.hstack([np.column_stack([100 + 2 * t, 150 + t]) - size / 2, size])
+    left = np.hstack([np.column_stack([300 - 2 * t, 250 - t]) - size / 2, size])
+    blend = 0.7 * left + 0.3 * right
+    first = np.vstack([right[:50], left[50:]])[40:]
+    second = np.vstack([left[:50], blend[50:62], right[62:]])[40:]
+    tracks = [_as_track(1, np.arange(40, 100), first), _as_track(2, np.arange(40, 100), second)]
+    out = swap_at_crossings(tracks, 100, 8, np.ones((2, 2), dtype=bool))
+    away = np.abs(t[40:] - 56) > 6
+    np.testing.assert_allclose(out[0].boxes[away], right[40:][away])
+    np.testing.assert_allclose(out[1].boxes[away], left[40:][away])
+
+
 def test_lookalikes_that_turn_where_they_pass_keep_their_tracks_if_their_boxes_never_blend() -> None:
     """Two 40x30 look-alikes pass 20 px apart at frame 50 and both turn there: A (right and up)
     turns back, B (left) goes on right and up. The lines either side of the meeting fit the

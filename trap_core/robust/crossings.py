@@ -63,11 +63,13 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
     the frame where that helps most, if there the tracks' own pairing breaks their motion by
     more than ``TURN`` times the smaller size per frame (a turn, not jitter) and the exchanged
     pairing does not, by at most half as much (both go on as they were going). Where no frame
-    passes, the same test on the lines before and after the whole meeting exchanges them at its
-    middle frame (:func:`_across_meeting`). In a meeting longer than ``2 * window`` frames, the
-    lines at a cut lie inside it, on boxes of two objects that travel together: the cut is not
-    taken where the lines before and after the whole meeting break less with the tracks' own
-    pairing. Only tracks ``alike[a, b]`` (:func:`lookalike_tracks`) trade. The lines either side
+    passes and somewhere in the meeting the boxes overlap by at least ``min_iou``, the lines
+    after may start up to ``window`` frames later, past a blend of both objects
+    (:func:`_best_cut`); where still none passes, the same test on the lines before and after
+    the whole meeting exchanges them at its middle frame (:func:`_across_meeting`). Where the lines at the cut
+    lie inside the meeting, they may be on boxes of two objects that travel together: the cut
+    is not taken where the lines before and after the whole meeting break less with the tracks'
+    own pairing. Only tracks ``alike[a, b]`` (:func:`lookalike_tracks`) trade. The lines either side
     of the whole meeting exchange the tracks only if somewhere in it their boxes overlap by at
     least ``min_iou`` (may hold the same object): boxes that stay apart each kept their own
     object, and a trade between them would be a jump that the test at each frame looks for.
@@ -84,13 +86,16 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
             close = np.linalg.norm(centres[a] - centres[b], axis=1) < size  # NaN where either is absent
             edges = np.diff(np.concatenate(([0], close.astype(np.int8), [0])))
             for start, stop in zip(np.flatnonzero(edges == 1).tolist(), np.flatnonzero(edges == -1).tolist()):
-                cut = _best_cut(centres[a], centres[b], range(start, stop + 1), window, TURN * size)
+                blended = np.nan_to_num(box_iou(boxes[a, start:stop], boxes[b, start:stop])).max() >= min_iou
+                found = _best_cut(centres[a], centres[b], range(start, stop + 1), window, TURN * size,
+                                  window if blended else 0)
                 outside = _across_meeting(centres[a], centres[b], start, stop, window)
-                if cut is None:
-                    blended = np.nan_to_num(box_iou(boxes[a, start:stop], boxes[b, start:stop])).max() >= min_iou
+                if found is None:
                     cut = (start + stop) // 2 if blended and _gain(outside, TURN * size) is not None else None
-                elif stop - start > 2 * window and outside is not None and outside[0] < outside[1]:
-                    cut = None
+                else:
+                    cut, (first_line, last_line) = found
+                    if start <= first_line and last_line <= stop and outside is not None and outside[0] < outside[1]:
+                        cut = None
                 if cut is None:
                     continue
                 out[a], out[b] = _exchanged(out[a], out[b], cut)
@@ -99,14 +104,41 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
     return out
 
 
-def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, least: float) -> int | None:
-    """Frame of ``cuts`` where exchanging the centre paths' continuations helps most, or None."""
+def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, least: float, most_skipped: int
+              ) -> tuple[int, tuple[int, int]] | None:
+    """Frame of ``cuts`` where exchanging the centre paths' continuations helps most, and the
+    first and last frame of the lines that tell it; None where no frame does.
+
+    Where no frame parts them, the lines after a cut may start up to ``most_skipped`` frames
+    later (the cut and skip that help most): where the objects overlap, one track can hold a blend of both
+    for a few frames after the other has already left on its new object, and a line through
+    the blend fits neither pairing. The frames skipped are counted in the spread of the jump,
+    and the exchange is made halfway across them."""
+    def lines(starts: range) -> np.ndarray:
+        """(len(starts), 2 paths, velocity and position, 2) lines from each start on; NaN: none."""
+        out = np.full((len(starts), 2, 2, 2), np.nan)
+        for row, start in enumerate(starts):
+            found = _lines(first, second, np.arange(max(start, 0), min(start + window, len(first))))
+            if found is not None:
+                out[row] = found
+        return out
+
+    before = lines(range(cuts.start - window, cuts.stop - window))
+    after = lines(range(cuts.start, cuts.stop + window))
     best, best_gain = None, 0.0
-    for cut in cuts:
-        gain = _gain(_breaks(first, second, np.arange(max(cut - window, 0), cut),
-                             np.arange(cut, min(cut + window, len(first))), cut, window), least)
-        if gain is not None and gain > best_gain:
-            best, best_gain = cut, gain
+    for skipped in range(most_skipped + 1):
+        if skipped == 1 and best is not None:
+            break
+        middle = np.arange(cuts.start, cuts.stop) + skipped // 2
+        then = after[skipped:skipped + len(cuts)]
+        kept = (_break(before[:, 0], then[:, 0], middle, window + skipped)
+                + _break(before[:, 1], then[:, 1], middle, window + skipped))
+        exchanged = (_break(before[:, 0], then[:, 1], middle, window + skipped)
+                     + _break(before[:, 1], then[:, 0], middle, window + skipped))
+        gain = np.where((exchanged <= least) & (least < kept) & (2 * exchanged <= kept), kept - exchanged, 0.0)
+        if gain.size and gain.max() > best_gain:
+            cut = cuts.start + int(gain.argmax())
+            best, best_gain = (cut + skipped // 2, (cut - window, cut + skipped + window - 1)), float(gain.max())
     return best
 
 
@@ -115,24 +147,32 @@ def _across_meeting(first: np.ndarray, second: np.ndarray, start: int, stop: int
     """:func:`_breaks` of a cut at the meeting's middle frame, judged from the lines over
     ``window`` frames before the meeting and after it (the tracks may hold one object together
     in it, so that no single frame of it parts them, or travel together for long)."""
-    return _breaks(first, second, np.arange(max(start - window, 0), start),
-                   np.arange(stop, min(stop + window, len(first))), (start + stop) // 2, window + stop - start)
+    return _breaks(_lines(first, second, np.arange(max(start - window, 0), start)),
+                   _lines(first, second, np.arange(stop, min(stop + window, len(first)))),
+                   (start + stop) // 2, window + stop - start)
 
 
-def _breaks(first: np.ndarray, second: np.ndarray, before: np.ndarray, after: np.ndarray, cut: int, spread: int
+Line = tuple[np.ndarray, np.ndarray]
+
+
+def _lines(first: np.ndarray, second: np.ndarray, frames: np.ndarray) -> tuple[Line, Line] | None:
+    """Both centre paths' straight lines over ``frames``; None where either cannot be drawn."""
+    lines = straight_line(first, frames), straight_line(second, frames)
+    return None if lines[0] is None or lines[1] is None else lines
+
+
+def _breaks(before: tuple[Line, Line] | None, after: tuple[Line, Line] | None, cut: int, spread: int
             ) -> tuple[float, float] | None:
-    """How much the centre paths' own pairing and the exchanged one (continuations traded at
-    ``cut``) break their motions (:func:`_break`, jumps spread over ``spread`` frames), from
-    straight lines over the frames ``before`` and ``after``; None where a line cannot be drawn."""
-    lines_before = [straight_line(path, before) for path in (first, second)]
-    lines_after = [straight_line(path, after) for path in (first, second)]
-    if any(line is None for line in lines_before + lines_after):
+    """How much two tracks' own pairing and the exchanged one (continuations traded at ``cut``)
+    break their motions (:func:`_break`, jumps spread over ``spread`` frames), from their
+    :func:`_lines` ``before`` and ``after``; None where a line is missing."""
+    if before is None or after is None:
         return None
-    kept = (_break(lines_before[0], lines_after[0], cut, spread)
-            + _break(lines_before[1], lines_after[1], cut, spread))
-    exchanged = (_break(lines_before[0], lines_after[1], cut, spread)
-                 + _break(lines_before[1], lines_after[0], cut, spread))
-    return kept, exchanged
+    before_lines, after_lines = np.array(before), np.array(after)
+    kept = _break(before_lines[0], after_lines[0], cut, spread) + _break(before_lines[1], after_lines[1], cut, spread)
+    exchanged = (_break(before_lines[0], after_lines[1], cut, spread)
+                 + _break(before_lines[1], after_lines[0], cut, spread))
+    return float(kept), float(exchanged)
 
 
 def _gain(breaks: tuple[float, float] | None, least: float) -> float | None:
@@ -145,14 +185,13 @@ def _gain(breaks: tuple[float, float] | None, least: float) -> float | None:
     return kept - exchanged if exchanged <= least < kept and 2 * exchanged <= kept else None
 
 
-def _break(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, np.ndarray], cut: int,
-           window: int) -> float:
+def _break(before: np.ndarray, after: np.ndarray, cut: np.ndarray | int, window: int) -> np.ndarray:
     """How much going from the line ``before`` (velocity, position at frame 0) to the line
     ``after`` at ``cut`` breaks a straight motion: the change of velocity, and the jump between
-    the lines spread over ``window`` frames."""
-    (v0, p0), (v1, p1) = before, after
-    at = cut - 0.5
-    return float(np.linalg.norm(v1 - v0) + np.linalg.norm((p1 + v1 * at) - (p0 + v0 * at)) / window)
+    the lines spread over ``window`` frames. Lines (..., 2, 2) and cuts (...) broadcast."""
+    (v0, p0), (v1, p1) = np.moveaxis(before, -2, 0), np.moveaxis(after, -2, 0)
+    at = np.asarray(cut, dtype=float)[..., None] - 0.5
+    return np.linalg.norm(v1 - v0, axis=-1) + np.linalg.norm((p1 + v1 * at) - (p0 + v0 * at), axis=-1) / window
 
 
 def _exchanged(a: Track, b: Track, cut: int) -> tuple[Track, Track]:

@@ -1,26 +1,25 @@
-"""From plane graphs to tracks: mining, trajectories, clustering, lifetime cut, selection."""
+"""From plane graphs to tracks: mining, trajectories, clustering, lifetime cut, selection; the
+selected clusters become tracks in :mod:`trap_core.pipeline.track_rules`."""
 from __future__ import annotations
 
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from trap_core.clustering import (ClusterSummary, Hierarchy, ObservedPaths, Track, Trajectories, build_track,
-                                  cluster_patterns, observed_paths, pattern_distances, seen_frames, select_clusters,
-                                  summarise, trajectories, twin_clusters)
+from trap_core.clustering import (ClusterSummary, Hierarchy, ObservedPaths, Track, Trajectories, cluster_patterns,
+                                  observed_paths, pattern_distances, seen_frames, select_clusters, summarise,
+                                  trajectories)
 from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
+from trap_core.pipeline.track_rules import Clusters, ClusterTracks, tracks_of_clusters
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, border_contacts, border_share,
-                              camera_paths, camera_transforms, cluster_world_speed, continue_to_border, continue_tracks,
-                              drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_strays,
-                              end_at_exits, extend_from_twins, fill_gaps, grow_boxes, hand_to_owners, held_share,
-                              join_handovers, keep_one_size, lookalike_tracks, mend_shared_stretches, merge_duplicates,
-                              pattern_sizes, rejoin_fragments, separate_groups, shadowed, split_mixed,
-                              swap_at_crossings, whole_patterns_apart, without_backdrop, world_speed, world_steps)
+                              camera_paths, camera_transforms, cluster_world_speed, hand_to_owners, held_share,
+                              pattern_sizes, rejoin_fragments, shadowed, split_mixed, whole_patterns_apart,
+                              without_backdrop, world_speed, world_steps)
 
 
 @dataclass
@@ -154,67 +153,9 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     all_labels[clustered] = labels
     if robust and params.one_object:
         all_labels = hand_to_owners(mined, all_labels, selected, graphs)
-    lag = max(1, params.tau // 5)  # frames either side where a region is looked for again
-
-    built_tracks: dict[int, Track] = {}  # per cluster: rules look at the same clusters' tracks again
-
-    def track_of(cluster: int, track_id: int) -> Track:
-        """The cluster's track with id ``track_id``, built once (:func:`one_track`)."""
-        if cluster not in built_tracks:
-            built_tracks[cluster] = one_track(cluster)
-        return replace(built_tracks[cluster], track_id=track_id)
-
-    def one_track(cluster: int) -> Track:
-        """The cluster's boxes, with the rules in effect that look at one track alone."""
-        built = build_track(mined, all_labels, cluster, 0, graphs, params.core_share if robust else 0.0)
-        if robust and params.still_regions and params.core_share > 0:
-            built = drop_still_regions(built, mined, all_labels, graphs, transforms, params.core_share, lag)
-        if robust and params.grow:
-            built = grow_boxes(built, graphs, transforms, lag=lag, max_gap=2 * lag)
-        if robust and params.fill_gaps:
-            built = fill_gaps(built, params.tau)
-        return built
-
-    def gaps_filled(tracks: list[Track]) -> list[Track]:
-        """The tracks with their gaps filled again after a rule removed or appended boxes."""
-        return [fill_gaps(t, params.tau) for t in tracks] if params.fill_gaps else tracks
-
-    tracks = [track_of(cluster, track_id) for track_id, cluster in enumerate(selected, start=1)]
-    if robust and params.one_track:
-        tracks = merge_duplicates(tracks, params.tau)
-    if own_frames and not params.n_objects:
-        twins = twin_clusters(summary, selected, n_frames, params.min_track_length, params.separation, params.tau,
-                              moving)
-        tracks = extend_from_twins(tracks, [track_of(cluster, 0) for cluster in twins], params.tau, params.size_jump,
-                                   view=(width, height))
-    if robust and (params.size_jump or params.groups):
-        tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
-                                 groups=params.groups, patience=params.tau, min_gap=params.tau)
-    motion_window = max(3, params.tau // 2)  # frames over which a track's motion at a point is read
-    if robust and params.one_track:
-        tracks = gaps_filled([drop_strays(t, max(3, params.tau // 3)) for t in tracks])
-        alike = lookalike_tracks(tracks, labels, mined.st_pattern[clustered], occurrences)
-        tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
-        spare = np.flatnonzero((summary.length >= params.tau) & (True if moving is None else moving))
-        spare = spare[~np.isin(spare, selected)]
-
-        def spare_track(cluster: int) -> Track:
-            return track_of(cluster, 0)
-        tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, spare_track)
-        tracks = drop_shared_stretches(tracks, n_frames, params.tau, motion_window)
-        tracks = drop_repeated_pieces(tracks, motion_window)
-        tracks = [end_at_exits(t, width, height, motion_window) for t in tracks]
-        tracks = continue_tracks(tracks, summary, spare, n_frames, width, height, motion_window, params.eps,
-                                 spare_track)
-        tracks = [end_at_exits(t, width, height, motion_window) for t in tracks]  # and the continuations'
-        tracks = gaps_filled(join_handovers(tracks, n_frames, motion_window, params.eps))
-        if params.size_jump:  # the continuations' boxes were not sized against their tracks yet
-            tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
-                                     groups=False, min_gap=params.tau)
-        if not params.n_objects:
-            tracks = keep_one_size(tracks, params.tau, int(params.min_track_length * n_frames))
-    if robust and params.to_border:
-        tracks = [continue_to_border(t, n_frames, width, height, motion_window, 2 * params.tau) for t in tracks]
+    clusters = Clusters(summary, selected, moving, labels, mined.st_pattern[clustered], occurrences)
+    tracks = tracks_of_clusters(clusters, ClusterTracks(mined, all_labels, graphs, transforms, params), n_frames,
+                                (width, height), own_frames)
     seconds["clustering"] = time.perf_counter() - after_camera - seconds["distances"]
     return TrackingResult(mined, sub_paths, clustered, hierarchy, summary, selected, tracks, all_labels, seconds)
 

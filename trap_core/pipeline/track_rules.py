@@ -1,0 +1,133 @@
+"""From the selected clusters to tracks: each cluster's boxes, then the rules that compare tracks.
+
+The paper's method makes one track of each selected cluster (TRAP_SPEC section 7). The robust
+method (ours) then compares the tracks: duplicates merged, look-alikes that traded objects
+exchanged back, stretches that repeat another track dropped or mended, tracks continued by the
+clusters left over. Those rules ask for the same clusters' tracks again and again, so each
+cluster's track is built once (:class:`ClusterTracks`).
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from trap_core.clustering import ClusterSummary, Track, build_track, twin_clusters
+from trap_core.mining import MiningResult
+from trap_core.pipeline.params import TrapParams
+from trap_core.rag import PlaneGraph
+from trap_core.robust import (continue_to_border, continue_tracks, drop_repeated_pieces, drop_shared_stretches,
+                              drop_still_regions, drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes,
+                              join_handovers, keep_one_size, lookalike_tracks, mend_shared_stretches,
+                              merge_duplicates, separate_groups, swap_at_crossings)
+
+
+@dataclass
+class ClusterTracks:
+    """Each cluster's track, built once with the rules in effect that look at one track alone:
+    its regions' boxes (core share), still regions left out, boxes grown to their regions, gaps
+    filled. ``labels``: cluster of each spatio-temporal pattern of ``mined`` (-1: none);
+    ``transforms``: the camera's, or None where no rule needs them."""
+
+    mined: MiningResult
+    labels: np.ndarray
+    graphs: Sequence[PlaneGraph]
+    transforms: np.ndarray | None
+    params: TrapParams
+    _built: dict[int, Track] = field(default_factory=dict)
+
+    def __call__(self, cluster: int, track_id: int = 0) -> Track:
+        """The cluster's track with id ``track_id``."""
+        if cluster not in self._built:
+            self._built[cluster] = self._build(cluster)
+        return replace(self._built[cluster], track_id=track_id)
+
+    def _build(self, cluster: int) -> Track:
+        params = self.params
+        robust = params.method == "robust"
+        lag = max(1, params.tau // 5)  # frames either side where a region is looked for again
+        built = build_track(self.mined, self.labels, cluster, 0, self.graphs, params.core_share if robust else 0.0)
+        if robust and params.still_regions and params.core_share > 0:
+            built = drop_still_regions(built, self.mined, self.labels, self.graphs, self.transforms,
+                                       params.core_share, lag)
+        if robust and params.grow:
+            built = grow_boxes(built, self.graphs, self.transforms, lag=lag, max_gap=2 * lag)
+        if robust and params.fill_gaps:
+            built = fill_gaps(built, params.tau)
+        return built
+
+
+@dataclass
+class Clusters:
+    """What the track rules read of the clustering: the ``summary`` of every cluster, the
+    ``selected`` ones, which are ``moving`` (None: all may be), and the ``labels``, plane
+    ``structures`` and ``occurrences`` of the clustered patterns (look-alikes share structures)."""
+
+    summary: ClusterSummary
+    selected: list[int]
+    moving: np.ndarray | None
+    labels: np.ndarray
+    structures: np.ndarray
+    occurrences: np.ndarray
+
+
+def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: int, view: tuple[int, int],
+                       own_frames: bool) -> list[Track]:
+    """The selected clusters' tracks (ids from 1), with the rules of ``tracks_of.params`` that
+    compare tracks (``own_frames``: clusters were selected by the frames they hold alone, and
+    their twins may extend them)."""
+    params = tracks_of.params
+    robust = params.method == "robust"
+    width, height = view
+    summary, selected, moving = clusters.summary, clusters.selected, clusters.moving
+    tracks = [tracks_of(cluster, track_id) for track_id, cluster in enumerate(selected, start=1)]
+    if robust and params.one_track:
+        tracks = merge_duplicates(tracks, params.tau)
+    if own_frames and not params.n_objects:
+        twins = twin_clusters(summary, selected, n_frames, params.min_track_length, params.separation, params.tau,
+                              moving)
+        tracks = extend_from_twins(tracks, [tracks_of(cluster) for cluster in twins], params.tau, params.size_jump,
+                                   view=view)
+    if robust and (params.size_jump or params.groups):
+        tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
+                                 groups=params.groups, patience=params.tau, min_gap=params.tau)
+    motion_window = max(3, params.tau // 2)  # frames over which a track's motion at a point is read
+    if robust and params.one_track:
+        tracks = _one_track_per_object(tracks, clusters, tracks_of, n_frames, view, motion_window)
+    if robust and params.to_border:
+        tracks = [continue_to_border(t, n_frames, width, height, motion_window, 2 * params.tau) for t in tracks]
+    return tracks
+
+
+def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: ClusterTracks, n_frames: int,
+                          view: tuple[int, int], motion_window: int) -> list[Track]:
+    """The ``one_track`` rules (README, one track per object): strays dropped, trades at
+    crossings exchanged back, shared stretches mended or dropped, tracks ended at exits and
+    continued by spare clusters, handovers joined, one size kept."""
+    params = tracks_of.params
+    width, height = view
+    summary = clusters.summary
+    tracks = _gaps_filled([drop_strays(t, max(3, params.tau // 3)) for t in tracks], params)
+    alike = lookalike_tracks(tracks, clusters.labels, clusters.structures, clusters.occurrences)
+    tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
+    spare = np.flatnonzero((summary.length >= params.tau) & (True if clusters.moving is None else clusters.moving))
+    spare = spare[~np.isin(spare, clusters.selected)]
+    tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, tracks_of)
+    tracks = drop_shared_stretches(tracks, n_frames, params.tau, motion_window)
+    tracks = drop_repeated_pieces(tracks, motion_window)
+    tracks = [end_at_exits(t, width, height, motion_window) for t in tracks]
+    tracks = continue_tracks(tracks, summary, spare, n_frames, width, height, motion_window, params.eps, tracks_of)
+    tracks = [end_at_exits(t, width, height, motion_window) for t in tracks]  # and the continuations'
+    tracks = _gaps_filled(join_handovers(tracks, n_frames, motion_window, params.eps), params)
+    if params.size_jump:  # the continuations' boxes were not sized against their tracks yet
+        tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
+                                 groups=False, min_gap=params.tau)
+    if not params.n_objects:
+        tracks = keep_one_size(tracks, params.tau, int(params.min_track_length * n_frames))
+    return tracks
+
+
+def _gaps_filled(tracks: list[Track], params: TrapParams) -> list[Track]:
+    """The tracks with their gaps filled again after a rule removed or appended boxes."""
+    return [fill_gaps(t, params.tau) for t in tracks] if params.fill_gaps else tracks

@@ -66,13 +66,14 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
     passes and somewhere in the meeting the boxes overlap by at least ``min_iou``, the lines
     after may start up to ``window`` frames later, past a blend of both objects
     (:func:`_best_cut`); where still none passes, the same test on the lines before and after
-    the whole meeting exchanges them at its middle frame (:func:`_across_meeting`). Where the lines at the cut
-    lie inside the meeting, they may be on boxes of two objects that travel together: the cut
-    is not taken where the lines before and after the whole meeting break less with the tracks'
-    own pairing. Only tracks ``alike[a, b]`` (:func:`lookalike_tracks`) trade. The lines either side
-    of the whole meeting exchange the tracks only if somewhere in it their boxes overlap by at
-    least ``min_iou`` (may hold the same object): boxes that stay apart each kept their own
-    object, and a trade between them would be a jump that the test at each frame looks for.
+    the whole meeting exchanges them at its middle frame (:func:`_across_meeting`). Where the
+    lines at the cut lie inside the meeting, they may be on boxes of two objects that travel
+    together: the cut is not taken where the lines before and after the whole meeting break
+    less with the tracks' own pairing. Only tracks ``alike[a, b]`` (:func:`lookalike_tracks`)
+    trade. The lines either side of the whole meeting exchange the tracks only if somewhere in
+    it their boxes overlap by at least ``min_iou`` (may hold the same object): boxes that stay
+    apart each kept their own object, and a trade between them would be a jump that the test at
+    each frame looks for.
     """
     out = list(tracks)
     boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
@@ -110,10 +111,10 @@ def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, l
     first and last frame of the lines that tell it; None where no frame does.
 
     Where no frame parts them, the lines after a cut may start up to ``most_skipped`` frames
-    later (the cut and skip that help most): where the objects overlap, one track can hold a blend of both
-    for a few frames after the other has already left on its new object, and a line through
-    the blend fits neither pairing. The frames skipped are counted in the spread of the jump,
-    and the exchange is made halfway across them."""
+    later (the cut and skip that help most): where the objects overlap, one track can hold a
+    blend of both for a few frames after the other has already left on its new object, and a
+    line through the blend fits neither pairing. The frames skipped are counted in the spread
+    of the jump, and the exchange is made halfway across them."""
     def lines(starts: range) -> np.ndarray:
         """(len(starts), 2 paths, velocity and position, 2) lines from each start on; NaN: none."""
         out = np.full((len(starts), 2, 2, 2), np.nan)

@@ -302,17 +302,19 @@ def _set_nodes(face_set, he_origin, face_half_edges, face_offsets, left_out, nod
 
 
 @nb.njit(cache=True, nogil=True)
-def occurrence_geometry(sets, he_origin, face_half_edges, face_offsets, centroid, bbox):
-    """Per face set: mean barycentre of its distinct nodes, box of their regions, box of their
-    barycentres (x0, y0, x1, y1), and node count."""
-    count, width = sets.shape
-    position = np.empty((count, 2), dtype=np.float64)
-    box = np.empty((count, 4), dtype=np.float64)
-    node_box = np.empty((count, 4), dtype=np.float64)
+def occurrence_geometry(sets, he_origin, face_half_edges, face_offsets, centroid, bbox, left_out):
+    """Per face set, of its distinct nodes but those ``left_out`` (an empty mask leaves none
+    out): their mean barycentre, the box of their regions and the box of their barycentres
+    (x0, y0, x1, y1); NaN where no node is left."""
+    count = sets.shape[0]
+    position = np.full((count, 2), np.nan)
+    box = np.full((count, 4), np.nan)
+    node_box = np.full((count, 4), np.nan)
     nodes = np.empty(64, dtype=np.int64)
-    keep_all = np.zeros(0, dtype=np.bool_)
     for r in range(count):
-        nodes, n = _set_nodes(sets[r], he_origin, face_half_edges, face_offsets, keep_all, nodes)
+        nodes, n = _set_nodes(sets[r], he_origin, face_half_edges, face_offsets, left_out, nodes)
+        if n == 0:
+            continue
         sx = sy = 0.0
         box[r, 0] = box[r, 1] = node_box[r, 0] = node_box[r, 1] = 1e18
         box[r, 2] = box[r, 3] = node_box[r, 2] = node_box[r, 3] = -1e18
@@ -332,32 +334,6 @@ def occurrence_geometry(sets, he_origin, face_half_edges, face_offsets, centroid
         position[r, 0] = sx / n
         position[r, 1] = sy / n
     return position, box, node_box
-
-
-@nb.njit(cache=True, nogil=True)
-def geometry_without(sets, he_origin, face_half_edges, face_offsets, centroid, bbox, left_out):
-    """Per face set, of its distinct nodes but those ``left_out``: the mean barycentre and the
-    box of their regions (x0, y0, x1, y1); NaN where no other node is there."""
-    position = np.full((sets.shape[0], 2), np.nan)
-    box = np.full((sets.shape[0], 4), np.nan)
-    nodes = np.empty(64, dtype=np.int64)
-    for r in range(sets.shape[0]):
-        nodes, n = _set_nodes(sets[r], he_origin, face_half_edges, face_offsets, left_out, nodes)
-        if n:
-            sx = sy = 0.0
-            box[r, 0] = box[r, 1] = 1e18
-            box[r, 2] = box[r, 3] = -1e18
-            for k in range(n):
-                node = nodes[k]
-                sx += centroid[node, 0]
-                sy += centroid[node, 1]
-                box[r, 0] = min(box[r, 0], bbox[node, 0])
-                box[r, 1] = min(box[r, 1], bbox[node, 1])
-                box[r, 2] = max(box[r, 2], bbox[node, 2])
-                box[r, 3] = max(box[r, 3], bbox[node, 3])
-            position[r, 0] = sx / n
-            position[r, 1] = sy / n
-    return position, box
 
 
 @nb.njit(cache=True, nogil=True)

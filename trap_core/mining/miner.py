@@ -83,7 +83,7 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
         sets = sets[kept]
         position, box, node_box = occurrence_geometry(sets, graphs[index].he_origin, graphs[index].face_half_edges,
                                                       graphs[index].face_offsets, graphs[index].centroid,
-                                                      graphs[index].bbox)
+                                                      graphs[index].bbox, np.zeros(0, dtype=np.bool_))
         frames_list.append(np.full(sets.shape[0], index, dtype=np.int64))
         hashes_list.append(set_hashes[kept])
         faces_list.append(sets)

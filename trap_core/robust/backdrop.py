@@ -22,7 +22,7 @@ import numpy as np
 
 from trap_core.clustering import ClusterSummary
 from trap_core.mining import MiningResult
-from trap_core.mining._kernels import geometry_without
+from trap_core.mining._kernels import occurrence_geometry
 from trap_core.rag import PlaneGraph
 
 HELD_SHARE = 0.5  # a cluster with more of its occurrences holding the backdrop may be an object seen only through it
@@ -48,8 +48,8 @@ def without_backdrop(result: MiningResult, graphs: Sequence[PlaneGraph]) -> Mini
         rows = order[bounds[frame]:bounds[frame + 1]]
         if not backdrop.any() or rows.size == 0:
             continue
-        placed, boxed = geometry_without(result.occ_faces[rows], graph.he_origin, graph.face_half_edges,
-                                         graph.face_offsets, graph.centroid, graph.bbox, backdrop)
+        placed, boxed, _ = occurrence_geometry(result.occ_faces[rows], graph.he_origin, graph.face_half_edges,
+                                               graph.face_offsets, graph.centroid, graph.bbox, backdrop)
         found = ~np.isnan(placed[:, 0])
         position[rows[found]] = placed[found]
         box[rows[found]] = boxed[found]

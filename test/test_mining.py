@@ -1,6 +1,7 @@
 """The miner against a brute-force oracle: face sets, plane isomorphism, frequencies, components."""
 from __future__ import annotations
 
+import dataclasses
 import itertools
 from collections import defaultdict
 
@@ -198,6 +199,8 @@ def test_bad_parameters() -> None:
         MiningParams(tau=0)
     with pytest.raises(MiningError, match="freq_min"):
         MiningParams(freq_min=0)
+    with pytest.raises(MiningError, match="freq_st_cut"):
+        MiningParams(freq_st_cut=0)
 
 
 def _node_sets(graphs, result) -> set[frozenset]:
@@ -250,6 +253,26 @@ def test_filtering_a_result_equals_mining_with_higher_thresholds() -> None:
     high = mine(graphs, MiningParams(eps=8.0, tau=3, freq_st_min=4, freq_min=5, max_faces=2))
     assert high.n_st < low.n_st
     assert _node_sets(graphs, low.above(5, 4)) == _node_sets(graphs, high)
+
+
+def test_patterns_the_videos_ends_cut_need_only_freq_st_cut_frames() -> None:
+    rng = np.random.default_rng(31)
+    graphs = [_random_graph(rng, size=12) for _ in range(16)]
+    base = MiningParams(eps=8.0, tau=3, freq_st_min=6, freq_min=2, max_faces=2)
+    every = mine(graphs, dataclasses.replace(base, freq_st_min=1))
+    seen = every.freq_st()
+    first = np.array([every.occ_frame[every.st(s)].min() for s in range(every.n_st)])
+    last = np.array([every.occ_frame[every.st(s)].max() for s in range(every.n_st)])
+    at_ends = (first < 3) | (last >= 13)
+    cut_short = (seen < 6) & (seen >= 2) & at_ends
+    inside_short = (seen < 6) & (seen >= 2) & ~at_ends
+    assert cut_short.any() and inside_short.any()
+    keep = (seen >= 6) | cut_short
+    kept = type(every)(**{**every.__dict__, "st_pattern": every.st_pattern[keep],
+                          "st_offsets": np.r_[0, np.cumsum(every.st_occurrences[keep])],
+                          "st_rows": every.rows_of(np.flatnonzero(keep))[0]})
+    assert _node_sets(graphs, mine(graphs, dataclasses.replace(base, freq_st_cut=2))) == _node_sets(graphs, kept)
+    assert _node_sets(graphs, mine(graphs, base)) == _node_sets(graphs, every.above(2, 6))
 
 
 def test_auto_frequency_lands_in_the_target_or_at_a_bound() -> None:

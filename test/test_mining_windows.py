@@ -44,6 +44,16 @@ def test_windows_give_the_whole_videos_components_when_every_pattern_is_frequent
     assert np.all((np.diff(frames) >= 0) | (np.diff(owner) != 0))  # sorted by frame in each pattern
 
 
+def test_windows_keep_the_patterns_the_videos_ends_cut_as_the_whole_video_does(graphs) -> None:
+    params = MiningParams(tau=10, freq_st_min=40, freq_min=1, max_faces=2, freq_st_cut=12)
+    whole = mine(graphs, params)
+    stitched, windows = _windowed(graphs, params, window=60, overlap=10)
+    assert windows == 3
+    assert _patterns(stitched) == _patterns(whole)
+    short = whole.freq_st() < 40
+    assert short.any() and not _patterns(whole.above(1, 40)) >= _patterns(whole)
+
+
 def test_one_window_is_the_plain_miner(graphs) -> None:
     params = MiningParams(tau=10, freq_st_min=15, max_faces=2, linking="assignment")
     stitched, windows = _windowed(graphs, params, window=500, overlap=10)
@@ -90,11 +100,11 @@ def test_automatic_frequency_is_chosen_on_the_first_window(graphs) -> None:
     from trap_core.mining import mine_auto
     from trap_core.pipeline import PatternMiner, TrapParams
     params = TrapParams(segmentation="colour", tau=10, freq_st_min=30, max_faces=2, auto_frequency=True,
-                        mining_window=60)
+                        mining_window=60, freq_st_cut=0)
     miner = PatternMiner(params, len(graphs))
     for graph in graphs:
         miner.add(graph)
     stitched = miner.finish()
     _, frequency = mine_auto(graphs[:60], params.mining(60))
-    assert miner._windows.params.freq_st_min == miner._windows.params.freq_min == frequency < 30
+    assert miner._windows.params.freq_st_min == miner._windows.params.freq_min == miner.freq_st_min == frequency < 30
     assert stitched.n_st > 0 and stitched.freq_st().min() >= frequency

@@ -978,6 +978,25 @@ def test_a_track_ending_at_the_border_follows_its_object_out_of_view() -> None:
     assert np.isnan(out.points[20:]).all()
 
 
+def test_an_object_back_in_view_for_the_videos_last_20_frames_is_tracked_there() -> None:
+    """Object 3 leaves the view and comes back 20 frames before the video ends: too few for a
+    pattern of freq_st_min (36) frames. With the patterns the end cut short kept (freq_st_cut),
+    its track follows it back in; without them the track stops where it left."""
+    from trap_core.evaluation import match_objects
+    params = TrapParams(segmentation="colour")
+    graphs, truth = synthetic_graphs(SceneConfig(width=320, height=240, frames=291, seed=2), params)
+    back = {f: truth[2][f] for f in range(271, 291)}
+    assert len(back) == 20 and not any(f in truth[2] for f in range(235, 271))
+
+    def recall_back(freq_st_cut: int) -> float:
+        tracks = track(graphs, dataclasses.replace(params, freq_st_cut=freq_st_cut)).tracks
+        boxes = [{int(f): tuple(b) for f, b in zip(t.frames, t.boxes)} for t in tracks]
+        matched = match_objects(boxes, truth)[2][0]
+        return box_precision_recall(boxes[matched], back)[1] if matched is not None else 0.0
+
+    assert recall_back(8) >= 0.75 and recall_back(0) == 0.0
+
+
 def test_a_track_entering_is_continued_back_and_a_stop_at_the_border_is_not() -> None:
     from trap_core.clustering import Track
     from trap_core.robust import continue_to_border
@@ -1652,3 +1671,21 @@ def test_discs_on_a_cat_cut_by_its_backdrop_only_are_tracks() -> None:
     assert np.all(free <= CUT_SHARE)
     matched = match_objects([_boxes(t) for t in result.tracks], truth)
     assert len(result.tracks) == 3 and all(p >= 0.9 and r >= 0.75 for _, p, r in matched)
+
+
+def test_patterns_cut_short_by_the_videos_end_are_kept_only_where_no_long_one_goes_along() -> None:
+    from trap_core.robust import alone_at_ends
+    frames = np.arange(100)
+    car = np.column_stack([100 + 2.0 * frames, np.full(100, 200.0)])
+    tail = frames[80:]
+    pieces = [car,                                                        # a long pattern on a car
+              car[80:] + [3.0, 2.0],                                      # short: on that car
+              np.column_stack([500 - 3.0 * (tail - 80), np.full(20, 50.0)]),  # short: one entering elsewhere
+              np.r_[car[80:87] + 1.0, car[87:] + [0.0, 60.0]]]            # short: with the car a third of its frames
+    paths = Trajectories.pack([0, 80, 80, 80], pieces)
+    short = np.array([False, True, True, True])
+    sizes = np.array([40.0, 30.0, 30.0, 30.0])
+    np.testing.assert_array_equal(alone_at_ends(paths, short, sizes), [False, False, True, True])
+    huge = np.array([40.0, 30.0, 900.0, 900.0])  # a short pattern with a sprawling region is not on the car for that
+    np.testing.assert_array_equal(alone_at_ends(paths, short, huge), [False, False, True, True])
+    np.testing.assert_array_equal(alone_at_ends(paths, np.zeros(4, dtype=bool), sizes), [False] * 4)

@@ -4,7 +4,8 @@ TRAP_SPEC section 3. A pattern P (a connected set of at most ``max_faces`` inner
 frequent when ``freq(P)``, the number of frames holding an occurrence, reaches ``freq_min``.
 Occurrences are linked when they lie in different frames at most ``tau`` apart and within
 ``eps`` pixels; each connected component of that occurrence graph is a spatio-temporal
-pattern, kept when it spans at least ``freq_st_min`` distinct frames. With
+pattern, kept when it spans at least ``freq_st_min`` distinct frames (``freq_st_cut`` within
+``tau`` of the first or last frame, ours: the video cut it). With
 ``linking="assignment"`` (ours) occurrences are chained one to one instead, so the
 occurrences of look-alike objects that pass close to each other stay apart.
 
@@ -108,8 +109,8 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
     else:
         component = link_occurrences(starts, frames[order], position[order], float(params.eps), int(params.tau))
     open_after = len(graphs) - open_ends[1] if open_ends[1] > 0 else len(graphs)
-    st_pattern, st_offsets, st_rows = _components(component, pattern[order], frames[order], order,
-                                                  params.freq_st_min, (open_ends[0], open_after))
+    st_pattern, st_offsets, st_rows = _components(component, pattern[order], frames[order], order, params,
+                                                  len(graphs), (open_ends[0], open_after))
     pattern_faces = np.zeros(pattern_hash.size, dtype=np.int64)
     pattern_faces[pattern] = (occ_faces >= 0).sum(axis=1)
     # Keep only the occurrences of kept spatio-temporal patterns.
@@ -121,9 +122,11 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
 
 
 def _components(component: np.ndarray, pattern: np.ndarray, frames: np.ndarray, rows: np.ndarray,
-                freq_st_min: int, open_frames: tuple[int, int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Group sorted occurrences by component root; keep components spanning enough frames, or
-    reaching before ``open_frames[0]`` or from ``open_frames[1]`` on."""
+                params: MiningParams, n_frames: int,
+                open_frames: tuple[int, int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Group sorted occurrences by component root; keep components spanning enough frames
+    (:meth:`MiningParams.frequent_enough` over ``n_frames``), or reaching before
+    ``open_frames[0]`` or from ``open_frames[1]`` on."""
     if component.size == 0:
         return np.empty(0, np.int64), np.zeros(1, np.int64), np.empty(0, np.int64)
     order = np.lexsort((frames, component))
@@ -132,8 +135,8 @@ def _components(component: np.ndarray, pattern: np.ndarray, frames: np.ndarray, 
     sorted_frames = frames[order]
     distinct = np.r_[True, (root[1:] != root[:-1]) | (sorted_frames[1:] != sorted_frames[:-1])]
     frames_per = np.add.reduceat(distinct.astype(np.int64), bounds[:-1])
-    reaches_open_end = (sorted_frames[bounds[:-1]] < open_frames[0]) | (sorted_frames[bounds[1:] - 1] >= open_frames[1])
-    kept = (frames_per >= freq_st_min) | reaches_open_end
+    first, last = sorted_frames[bounds[:-1]], sorted_frames[bounds[1:] - 1]
+    kept = params.frequent_enough(frames_per, first, last, n_frames) | (first < open_frames[0]) | (last >= open_frames[1])
     keep = np.flatnonzero(kept)
     offsets = np.r_[0, np.cumsum(bounds[keep + 1] - bounds[keep])].astype(np.int64)
     picked = order[np.repeat(kept, np.diff(bounds))]

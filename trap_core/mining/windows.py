@@ -189,7 +189,13 @@ class WindowedMiner:
                 break
             parent = grand
         frames_of_root = np.bincount(parent, weights=self._owned_frames, minlength=parent.size)
-        kept = [frames_of_root[parent[piece.component]] >= self.params.freq_st_min for piece in self._pieces]
+        first = np.full(parent.size, np.iinfo(np.int64).max)
+        last = np.full(parent.size, -1)
+        for piece in self._pieces:
+            np.minimum.at(first, parent[piece.component], piece.frame)
+            np.maximum.at(last, parent[piece.component], piece.frame)
+        enough = self.params.frequent_enough(frames_of_root, first, last, self.frames)
+        kept = [enough[parent[piece.component]] for piece in self._pieces]
         root = np.concatenate([parent[piece.component[k]] for piece, k in zip(self._pieces, kept)])
         frame = np.concatenate([piece.frame[k] for piece, k in zip(self._pieces, kept)])
         order = np.lexsort((frame, root))  # the rows of each pattern, by frame: st_rows (no data moved)

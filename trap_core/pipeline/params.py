@@ -48,6 +48,12 @@ class TrapParams:
     tau: int = _p(25, "frames: temporal threshold of occurrence linking")
     freq_st_min: float = _p(36.0, "minimum frames of a spatio-temporal pattern: >= 1 frames (36 = 1.4 s at 25 Hz), "
                                   "< 1 share of the video")
+    freq_st_cut: int = _p(8, "robust: frames enough for a spatio-temporal pattern seen within tau frames of the "
+                             "video's (chunk's) first or last frame: the video cut it, and an object that enters "
+                             "the view in its last freq_st_min frames (leaves in its first) is seen no longer "
+                             "(8 = tau/3 at 25 Hz). Such a pattern is clustered only if it moves steadily and no "
+                             "longer one goes along with it, apart from the others, and joins them only by "
+                             "rejoining; 0 = freq_st_min (paper)")
     auto_frequency: bool = _p(False, "choose freq = freq_st (from freq_st_min on) so 600..2000 patterns are found "
                                      "(the paper's rule of thumb)")
     freq_min: float = _p(0.0, "minimum frames holding a pattern: 0 = freq_st_min (paper), < 1 share, >= 1 frames")
@@ -139,6 +145,7 @@ class TrapParams:
             (self.eps > 0 and self.tau >= 1, "eps must be > 0 and tau >= 1"),
             (self.freq_st_min > 0 and self.freq_min >= 0, "freq_st_min must be > 0 and freq_min >= 0"),
             (1 <= self.max_faces <= 8, "max_faces must be within 1..8"),
+            (self.freq_st_cut >= 0, "freq_st_cut must be >= 0"),
             (self.mining_window == 0 or self.mining_window > 2 * self.tau,
              "mining_window must be 0 (whole video) or more than 2 x tau"),
             (self.chunk == 0 or self.chunk >= 4 * self.tau, "chunk must be 0 (whole bag) or at least 4 x tau frames"),
@@ -177,7 +184,8 @@ class TrapParams:
         return MiningParams(eps=self.eps, tau=self.tau, freq_st_min=frames(self.freq_st_min),
                             freq_min=frames(self.freq_min) if self.freq_min else None, max_faces=self.max_faces,
                             linking="assignment" if self.method == "robust" and self.one_path else "graph",
-                            reach=self.link_reach)
+                            reach=self.link_reach,
+                            freq_st_cut=self.freq_st_cut if self.method == "robust" and self.freq_st_cut else None)
 
     @classmethod
     def descriptions(cls) -> dict[str, str]:

@@ -25,6 +25,7 @@ class PatternMiner:
     def __init__(self, params: TrapParams, n_frames: int | None = None) -> None:
         self.params = params
         self.seconds = 0.0
+        self.freq_st_min = 0  # frames, once finished: fewer only where the video's ends cut a pattern
         self._graphs: list[PlaneGraph] = []
         self._windows: WindowedMiner | None = None
         self._labels = (LabelMemory(params.colour_bins) if params.method == "robust" and params.label_memory
@@ -48,9 +49,13 @@ class PatternMiner:
         start = time.perf_counter()
         if self._windows is not None:
             mined = self._windows.finish()
+            self.freq_st_min = self._windows.params.freq_st_min
         else:
             params = self.params.mining(len(self._graphs))
-            mined = mine_auto(self._graphs, params)[0] if self.params.auto_frequency else mine(self._graphs, params)
+            if self.params.auto_frequency:
+                mined, self.freq_st_min = mine_auto(self._graphs, params)
+            else:
+                mined, self.freq_st_min = mine(self._graphs, params), params.freq_st_min
             self._graphs = []
         self.seconds += time.perf_counter() - start
         return mined

@@ -16,9 +16,9 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.pipeline.track_rules import Clusters, ClusterTracks, tracks_of_clusters
 from trap_core.rag import PlaneGraph
-from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, border_contacts, border_share,
-                              camera_paths, camera_transforms, cluster_world_speed, hand_to_owners, held_share,
-                              pattern_sizes, rejoin_fragments, shadowed, split_mixed, whole_patterns_apart,
+from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, alone_at_ends, border_contacts,
+                              border_share, camera_paths, camera_transforms, cluster_world_speed, hand_to_owners,
+                              held_share, pattern_sizes, rejoin_fragments, shadowed, split_mixed, whole_patterns_apart,
                               without_backdrop, world_speed, world_steps)
 
 
@@ -27,10 +27,10 @@ class TrackingResult:
     """Everything a run produced, for outputs, evaluation and pictures."""
 
     mining: MiningResult
-    trajectories: Trajectories  # of the clustered patterns, in the order of ``clustered`` (hierarchy leaves,
-    # but those clustered again without the backdrop: their trajectories are placed without it)
-    clustered: np.ndarray       # spatio-temporal patterns that were clustered
-    hierarchy: Hierarchy
+    trajectories: Trajectories  # of the clustered patterns, in the order of ``clustered`` (but those clustered
+    # again without the backdrop: their trajectories are placed without it)
+    clustered: np.ndarray       # spatio-temporal patterns that were clustered (increasing)
+    hierarchy: Hierarchy        # of ``clustered`` but those the video's ends cut short (hierarchy leaves)
     summary: ClusterSummary
     selected: list[int]
     tracks: list[Track]
@@ -64,6 +64,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     start = time.perf_counter()
     observed = observed_paths(mined)  # each pattern's mean position per frame: speeds and trajectories
     clustered = np.arange(mined.n_st)
+    cut_short = mined.freq_st() < miner.freq_st_min  # kept only as the video's ends cut them (robust)
     transforms = None
     free, free_observed = mined, observed
     if robust and (params.min_speed > 0 or params.grow or params.still_regions):
@@ -74,15 +75,19 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     if robust and params.min_speed > 0:
         speed, unsteady, in_hops = _pattern_motion(observed, transforms, mined.n_st, params)
         hopping = unsteady & (in_hops >= HOP_SHARE)  # between look-alikes of the background
-        clustered = np.flatnonzero(speed >= still_below)
+        # a pattern cut short has its speed read over few frames, where jitter passes for motion
+        clustered = np.flatnonzero((speed >= still_below) & ~(cut_short & (unsteady | (in_hops >= HOP_SHARE))))
+    if cut_short[clustered].any():  # those on objects that longer patterns follow add nothing
+        clustered = clustered[~cut_short[clustered] | alone_at_ends(
+            trajectories(observed, clustered), cut_short[clustered], pattern_sizes(mined, clustered))]
     seconds["camera"] = time.perf_counter() - start
     seconds["distances"] = 0.0  # clustering: everything after the camera but the pattern distances
     after_camera = time.perf_counter()
 
-    def cluster(patterns: np.ndarray, result: MiningResult, paths: Trajectories) -> tuple[Hierarchy, np.ndarray]:
-        """Clusters of ``patterns`` (``paths``: their trajectories; their sizes and border contacts
-        from ``result``): the lifetime cut, then with the robust method clusters that mix objects
-        split and fragments of one object rejoined."""
+    def lifetime_clusters(patterns: np.ndarray, result: MiningResult,
+                          paths: Trajectories) -> tuple[Hierarchy, np.ndarray]:
+        """The lifetime cut of ``patterns`` (``paths``: their trajectories), then with the robust
+        method clusters that mix objects split (their sizes from ``result``)."""
         start = time.perf_counter()
         distances = pattern_distances(paths)
         seconds["distances"] += time.perf_counter() - start
@@ -90,6 +95,28 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         labels = hierarchy.labels
         if robust and params.one_object:
             labels = split_mixed(hierarchy, distances, paths, pattern_sizes(result, patterns), params.tau)
+        return hierarchy, labels
+
+    def cluster(patterns: np.ndarray, result: MiningResult, paths: Trajectories) -> tuple[Hierarchy, np.ndarray]:
+        """Clusters of ``patterns`` (``paths``: their trajectories; their sizes and border contacts
+        from ``result``): :func:`lifetime_clusters`, then with the robust method fragments of one
+        object rejoined. Patterns the video's ends cut short (fewer than ``freq_st_min`` frames)
+        are cut apart, those of its start and of its end each on their own: their short paths
+        would shift the others' lifetime cut; they join the others only by rejoining. The
+        hierarchy is the others'."""
+        short = cut_short[patterns]
+        if not short.any():
+            hierarchy, labels = lifetime_clusters(patterns, result, paths)
+        else:
+            labels = np.empty(patterns.size, dtype=np.int64)
+            rows = np.flatnonzero(~short)
+            hierarchy, labels[rows] = lifetime_clusters(patterns[rows], result, paths.subset(rows))
+            at_start = paths.start < n_frames / 2
+            for rows in (np.flatnonzero(short & at_start), np.flatnonzero(short & ~at_start)):
+                if rows.size:
+                    first_label = labels[~short].max(initial=-1) + 1
+                    labels[rows] = first_label + lifetime_clusters(patterns[rows], result, paths.subset(rows))[1]
+                    short[rows] = False  # labelled
         if robust and params.rejoin:
             labels = rejoin_fragments(labels, paths, mined.st_pattern[patterns], n_frames,
                                       params.rejoin_similarity, params.tau,

@@ -9,6 +9,7 @@ from trap_core.robust.camera import (HOP_SHARE, camera_paths, camera_transforms,
                                      world_steps)
 from trap_core.robust.continuation import continue_tracks, join_handovers, mend_shared_stretches
 from trap_core.robust.crossings import lookalike_tracks, swap_at_crossings
+from trap_core.robust.ends import alone_at_ends
 from trap_core.robust.duplicates import drop_repeated_pieces, drop_shared_stretches, extend_from_twins, merge_duplicates
 from trap_core.robust.extent import grow_boxes
 from trap_core.robust.gaps import fill_gaps
@@ -21,7 +22,7 @@ from trap_core.robust.sizes import keep_one_size
 from trap_core.robust.still import drop_still_regions
 from trap_core.robust.strays import drop_strays
 
-__all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderContacts", "border_contacts",
+__all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderContacts", "alone_at_ends", "border_contacts",
            "border_share", "camera_paths", "camera_transforms", "cluster_world_speed", "continue_to_border",
            "continue_tracks", "drop_repeated_pieces", "drop_shared_stretches", "drop_still_regions", "drop_strays",
            "end_at_exits", "extend_from_twins", "fill_gaps", "grow_boxes", "hand_to_owners", "held_share",

@@ -1,0 +1,59 @@
+"""Patterns the video's ends cut short: kept only for objects no longer pattern follows (ours).
+
+The miner keeps a pattern seen in fewer than ``freq_st_min`` frames when it lies within ``tau``
+of the video's first or last frame (:attr:`~trap_core.mining.MiningParams.freq_st_cut`): an
+object that enters the view in the video's last second, or leaves it in the first, shows no
+longer pattern. Most such patterns, though, lie on objects that longer patterns already follow
+(an object's structures come and go, and at the ends every short piece of them is kept): over
+four look-alikes in 721 frames, three times as many as the long ones. They add nothing but
+fragments for rejoining to chain wrongly, start to end. A short pattern is kept only where no
+long one goes along with it: within half the sum of their sizes, as two patterns of one object
+are (:mod:`trap_core.robust.mixed`), in at least half of its frames.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from trap_core.clustering import Trajectories
+
+
+def alone_at_ends(paths: Trajectories, short: np.ndarray, sizes: np.ndarray) -> np.ndarray:
+    """Which patterns are ``short`` and go along with no pattern that is not.
+
+    Parameters
+    ----------
+    paths : Trajectories
+        The patterns' trajectories.
+    short : (n,) bool
+        Patterns kept only as the video's ends cut them short.
+    sizes : (n,) array
+        Each pattern's size (:func:`~trap_core.robust.mixed.pattern_sizes`).
+
+    Returns
+    -------
+    (n,) bool
+    """
+    alone = short.copy()
+    short_rows, long_rows = np.flatnonzero(short), np.flatnonzero(~short)
+    if not short_rows.size or not long_rows.size:
+        return alone
+    frames = np.unique(np.concatenate([np.arange(paths.start[p], paths.end[p] + 1) for p in short_rows]))
+    long_at = _dense(paths, long_rows, frames)  # the long patterns over the short ones' frames
+    for pattern in short_rows:
+        lo, hi = np.searchsorted(frames, [paths.start[pattern], paths.end[pattern] + 1])
+        offset = long_at[:, lo:hi] - paths.of(pattern).astype(np.float32)  # NaN where a long one is not seen
+        reach = np.minimum(sizes[long_rows], sizes[pattern]).astype(np.float32) / 2
+        with np.errstate(invalid="ignore"):
+            along = np.einsum("ijk,ijk->ij", offset, offset) <= (reach * reach)[:, None]
+        alone[pattern] = not np.any(np.count_nonzero(along, axis=1) >= (hi - lo) / 2)
+    return alone
+
+
+def _dense(paths: Trajectories, rows: np.ndarray, frames: np.ndarray) -> np.ndarray:
+    """(len(rows), len(frames), 2) points of trajectories ``rows`` in ``frames`` (increasing), NaN
+    outside their spans."""
+    dense = np.full((rows.size, frames.size, 2), np.nan, dtype=np.float32)
+    for row, pattern in enumerate(rows):
+        lo, hi = np.searchsorted(frames, [paths.start[pattern], paths.end[pattern] + 1])
+        dense[row, lo:hi] = paths.at(pattern, frames[lo:hi])
+    return dense

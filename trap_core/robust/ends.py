@@ -7,8 +7,10 @@ longer pattern. Most such patterns, though, lie on objects that longer patterns 
 (an object's structures come and go, and at the ends every short piece of them is kept): over
 four look-alikes in 721 frames, three times as many as the long ones. They add nothing but
 fragments for rejoining to chain wrongly, start to end. A short pattern is kept only where no
-long one goes along with it: within half the sum of their sizes, as two patterns of one object
-are (:mod:`trap_core.robust.mixed`), in at least half of its frames.
+long one goes along with it: within half the smaller of their sizes (each centre inside the
+other's extent) in at least half of its frames. Half the sum, the most two patterns of one
+object can be apart (:mod:`trap_core.robust.mixed`), is no test of going along: over gravel,
+every short pattern lay that close to some long face with a sprawling region.
 """
 from __future__ import annotations
 

@@ -1468,6 +1468,10 @@ def test_boxes_after_an_object_left_the_view_are_dropped() -> None:
     back = np.column_stack([np.r_[300.0, 0.0], [200.0, 200.0], [40.0, 12.0], [30.0, 30.0]])
     returns = _as_track(1, np.r_[frames[:35], 60, 80], np.vstack([seen, back]))  # inside, then through the border
     assert end_at_exits(returns, 640, 480, min_gap=12).frames.tolist() == list(range(28)) + [80]
+    sliver = back.copy()
+    sliver[1] = (3.0, 200.0, 1.0, 30.0)  # its return's first box: a 1 px strip of it, 3 px in
+    returns = _as_track(1, np.r_[frames[:35], 60, 80], np.vstack([seen, sliver]))
+    assert end_at_exits(returns, 640, 480, min_gap=12).frames.tolist() == list(range(28)) + [80]
     dipping = boxes[:35].copy()
     dipping[28:, 2] = np.linspace(10, 40, 7)  # grows back at the border: never left
     assert len(end_at_exits(_as_track(1, frames[:35], dipping), 640, 480, min_gap=12)) == 35

@@ -116,11 +116,15 @@ def centre_inside(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.all((centre >= large[..., :2]) & (centre <= large[..., :2] + large[..., 2:4]), axis=-1)
 
 
-def reaches_border(boxes: np.ndarray, width: float, height: float, margin: float = 0.25) -> np.ndarray:
-    """Whether boxes ``(x, y, w, h)`` (N, 4) come within ``margin`` times their own size of the
-    image border: the object is entering or leaving the view."""
+def reaches_border(boxes: np.ndarray, width: float, height: float, margin: float = 0.25,
+                   size: np.ndarray | None = None) -> np.ndarray:
+    """Whether boxes ``(x, y, w, h)`` (N, 4) come within ``margin`` times their size (their own,
+    or at least ``size``: width, height) of the image border: the object is entering or leaving
+    the view."""
     x, y, w, h = np.asarray(boxes, dtype=float).T
-    return (x <= margin * w) | (y <= margin * h) | (x + w >= width - margin * w) | (y + h >= height - margin * h)
+    reach_x, reach_y = (margin * w, margin * h) if size is None else (margin * np.maximum(w, size[0]),
+                                                                       margin * np.maximum(h, size[1]))
+    return (x <= reach_x) | (y <= reach_y) | (x + w >= width - reach_x) | (y + h >= height - reach_y)
 
 
 def _intersection(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

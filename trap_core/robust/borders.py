@@ -99,7 +99,8 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     the border a frame later unless it moves half its size in a frame: the patterns went on with
     something else (noise, a neighbour) once the object was gone. Nor can it come back but
     through the border: boxes are dropped up to a run (after a gap of more than ``min_gap``
-    frames) whose first box reaches the border (:func:`reaches_border`).
+    frames) whose first box reaches the border (:func:`reaches_border`, within a quarter of
+    the object's usual extent: that box may be a sliver of it).
 
     Parameters
     ----------
@@ -124,7 +125,8 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     extent = np.column_stack([w, h, w, h])
     usual = np.median(extent[whole], axis=0)
     frames = track.frames
-    entering = np.r_[True, np.diff(frames) > min_gap] & reaches_border(boxes, width, height)
+    # a run's first box may be a sliver of the object at the border: reach measured at its usual size
+    entering = np.r_[True, np.diff(frames) > min_gap] & reaches_border(boxes, width, height, size=usual[:2])
     keep = np.ones(frames.size, dtype=bool)
     row = leaving - 1
     while row < frames.size - 1:

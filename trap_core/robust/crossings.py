@@ -92,10 +92,10 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
                                   window if blended else 0)
                 outside = _across_meeting(centres[a], centres[b], start, stop, window)
                 if found is None:
-                    cut = (start + stop) // 2 if blended and _gain(outside, TURN * size) is not None else None
+                    cut = (start + stop) // 2 if blended and _gain(*outside, TURN * size) > 0 else None
                 else:
                     cut, (first_line, last_line) = found
-                    if start <= first_line and last_line <= stop and outside is not None and outside[0] < outside[1]:
+                    if start <= first_line and last_line <= stop and outside[0] < outside[1]:
                         cut = None
                 if cut is None:
                     continue
@@ -116,13 +116,9 @@ def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, l
     line through the blend fits neither pairing. The frames skipped are counted in the spread
     of the jump, and the exchange is made halfway across them."""
     def lines(starts: range) -> np.ndarray:
-        """(len(starts), 2 paths, velocity and position, 2) lines from each start on; NaN: none."""
-        out = np.full((len(starts), 2, 2, 2), np.nan)
-        for row, start in enumerate(starts):
-            found = _lines(first, second, np.arange(max(start, 0), min(start + window, len(first))))
-            if found is not None:
-                out[row] = found
-        return out
+        """(len(starts), 2, 2, 2): :func:`_lines` over ``window`` frames from each start on."""
+        return np.array([_lines(first, second, np.arange(max(start, 0), min(start + window, len(first))))
+                         for start in starts]).reshape(len(starts), 2, 2, 2)
 
     before = lines(range(cuts.start - window, cuts.stop - window))
     after = lines(range(cuts.start, cuts.stop + window))
@@ -131,12 +127,7 @@ def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, l
         if skipped == 1 and best is not None:
             break
         middle = np.arange(cuts.start, cuts.stop) + skipped // 2
-        then = after[skipped:skipped + len(cuts)]
-        kept = (_break(before[:, 0], then[:, 0], middle, window + skipped)
-                + _break(before[:, 1], then[:, 1], middle, window + skipped))
-        exchanged = (_break(before[:, 0], then[:, 1], middle, window + skipped)
-                     + _break(before[:, 1], then[:, 0], middle, window + skipped))
-        gain = np.where((exchanged <= least) & (least < kept) & (2 * exchanged <= kept), kept - exchanged, 0.0)
+        gain = _gain(*_breaks(before, after[skipped:skipped + len(cuts)], middle, window + skipped), least)
         if gain.size and gain.max() > best_gain:
             cut = cuts.start + int(gain.argmax())
             best, best_gain = (cut + skipped // 2, (cut - window, cut + skipped + window - 1)), float(gain.max())
@@ -144,7 +135,7 @@ def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, l
 
 
 def _across_meeting(first: np.ndarray, second: np.ndarray, start: int, stop: int, window: int
-                    ) -> tuple[float, float] | None:
+                    ) -> tuple[np.ndarray, np.ndarray]:
     """:func:`_breaks` of a cut at the meeting's middle frame, judged from the lines over
     ``window`` frames before the meeting and after it (the tracks may hold one object together
     in it, so that no single frame of it parts them, or travel together for long)."""
@@ -153,37 +144,31 @@ def _across_meeting(first: np.ndarray, second: np.ndarray, start: int, stop: int
                    (start + stop) // 2, window + stop - start)
 
 
-Line = tuple[np.ndarray, np.ndarray]
-
-
-def _lines(first: np.ndarray, second: np.ndarray, frames: np.ndarray) -> tuple[Line, Line] | None:
-    """Both centre paths' straight lines over ``frames``; None where either cannot be drawn."""
+def _lines(first: np.ndarray, second: np.ndarray, frames: np.ndarray) -> np.ndarray:
+    """(2 paths, velocity and position, 2): both centre paths' straight lines over ``frames``;
+    NaN where either cannot be drawn."""
     lines = straight_line(first, frames), straight_line(second, frames)
-    return None if lines[0] is None or lines[1] is None else lines
+    return np.full((2, 2, 2), np.nan) if lines[0] is None or lines[1] is None else np.array(lines, dtype=float)
 
 
-def _breaks(before: tuple[Line, Line] | None, after: tuple[Line, Line] | None, cut: int, spread: int
-            ) -> tuple[float, float] | None:
+def _breaks(before: np.ndarray, after: np.ndarray, cut: np.ndarray | int, spread: int
+            ) -> tuple[np.ndarray, np.ndarray]:
     """How much two tracks' own pairing and the exchanged one (continuations traded at ``cut``)
     break their motions (:func:`_break`, jumps spread over ``spread`` frames), from their
-    :func:`_lines` ``before`` and ``after``; None where a line is missing."""
-    if before is None or after is None:
-        return None
-    before_lines, after_lines = np.array(before), np.array(after)
-    kept = _break(before_lines[0], after_lines[0], cut, spread) + _break(before_lines[1], after_lines[1], cut, spread)
-    exchanged = (_break(before_lines[0], after_lines[1], cut, spread)
-                 + _break(before_lines[1], after_lines[0], cut, spread))
-    return float(kept), float(exchanged)
+    :func:`_lines` ``before`` and ``after`` (..., 2, 2, 2; cuts (...) broadcast); NaN where a
+    line is missing."""
+    kept = _break(before[..., 0, :, :], after[..., 0, :, :], cut, spread) + _break(
+        before[..., 1, :, :], after[..., 1, :, :], cut, spread)
+    exchanged = _break(before[..., 0, :, :], after[..., 1, :, :], cut, spread) + _break(
+        before[..., 1, :, :], after[..., 0, :, :], cut, spread)
+    return kept, exchanged
 
 
-def _gain(breaks: tuple[float, float] | None, least: float) -> float | None:
-    """How much exchanging lessens the break (own, exchanged) of the motions; None unless the
-    own pairing breaks by more than ``least`` and the exchanged one by at most that, and by at
-    most half as much."""
-    if breaks is None:
-        return None
-    kept, exchanged = breaks
-    return kept - exchanged if exchanged <= least < kept and 2 * exchanged <= kept else None
+def _gain(kept: np.ndarray, exchanged: np.ndarray, least: float) -> np.ndarray:
+    """How much exchanging lessens the break of the motions (``kept``: own pairing's,
+    ``exchanged``); 0 unless the own pairing breaks by more than ``least`` and the exchanged one
+    by at most that, and by at most half as much (NaN: no)."""
+    return np.where((exchanged <= least) & (least < kept) & (2 * exchanged <= kept), kept - exchanged, 0.0)
 
 
 def _break(before: np.ndarray, after: np.ndarray, cut: np.ndarray | int, window: int) -> np.ndarray:

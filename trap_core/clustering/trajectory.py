@@ -29,6 +29,15 @@ class Trajectories:
         """Points of trajectory ``index`` in ``frames`` (within its span)."""
         return self.of(index)[np.asarray(frames) - self.start[index]]
 
+    def dense(self, rows: np.ndarray, frames: np.ndarray, dtype: type = np.float64) -> np.ndarray:
+        """(len(rows), len(frames), 2): the points of trajectories ``rows`` in ``frames``
+        (increasing), NaN outside their spans; for comparing many trajectories frame by frame."""
+        out = np.full((len(rows), len(frames), 2), np.nan, dtype=dtype)
+        for row, index in enumerate(rows):
+            lo, hi = np.searchsorted(frames, [self.start[index], self.end[index] + 1])
+            out[row, lo:hi] = self.at(index, frames[lo:hi])
+        return out
+
     def __len__(self) -> int:
         return int(self.start.size)
 

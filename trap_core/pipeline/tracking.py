@@ -77,9 +77,11 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         hopping = unsteady & (in_hops >= HOP_SHARE)  # between look-alikes of the background
         # a pattern cut short has its speed read over few frames, where jitter passes for motion
         clustered = np.flatnonzero((speed >= still_below) & ~(cut_short & (unsteady | (in_hops >= HOP_SHARE))))
+    sub_paths = trajectories(observed, clustered)
     if cut_short[clustered].any():  # those on objects that longer patterns follow add nothing
-        clustered = clustered[~cut_short[clustered] | alone_at_ends(
-            trajectories(observed, clustered), cut_short[clustered], pattern_sizes(mined, clustered))]
+        kept = np.flatnonzero(~cut_short[clustered] | alone_at_ends(sub_paths, cut_short[clustered],
+                                                                     pattern_sizes(mined, clustered)))
+        clustered, sub_paths = clustered[kept], sub_paths.subset(kept)
     seconds["camera"] = time.perf_counter() - start
     seconds["distances"] = 0.0  # clustering: everything after the camera but the pattern distances
     after_camera = time.perf_counter()
@@ -108,15 +110,13 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         if not short.any():
             hierarchy, labels = lifetime_clusters(patterns, result, paths)
         else:
-            labels = np.empty(patterns.size, dtype=np.int64)
+            labels = np.full(patterns.size, -1, dtype=np.int64)
             rows = np.flatnonzero(~short)
             hierarchy, labels[rows] = lifetime_clusters(patterns[rows], result, paths.subset(rows))
             at_start = paths.start < n_frames / 2
             for rows in (np.flatnonzero(short & at_start), np.flatnonzero(short & ~at_start)):
                 if rows.size:
-                    first_label = labels[~short].max(initial=-1) + 1
-                    labels[rows] = first_label + lifetime_clusters(patterns[rows], result, paths.subset(rows))[1]
-                    short[rows] = False  # labelled
+                    labels[rows] = labels.max() + 1 + lifetime_clusters(patterns[rows], result, paths.subset(rows))[1]
         if robust and params.rejoin:
             labels = rejoin_fragments(labels, paths, mined.st_pattern[patterns], n_frames,
                                       params.rejoin_similarity, params.tau,
@@ -127,7 +127,6 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                                       lone_gap=params.tau, max_apart=params.eps)
         return hierarchy, labels
 
-    sub_paths = trajectories(observed, clustered)
     hierarchy, labels = cluster(clustered, mined, sub_paths)
     occurrences = mined.st_occurrences[clustered]
     if robust and params.min_speed > 0:  # an object's patterns out of a cluster mostly cut by the view

@@ -40,7 +40,7 @@ def alone_at_ends(paths: Trajectories, short: np.ndarray, sizes: np.ndarray) -> 
     if not short_rows.size or not long_rows.size:
         return alone
     frames = np.unique(np.concatenate([np.arange(paths.start[p], paths.end[p] + 1) for p in short_rows]))
-    long_at = _dense(paths, long_rows, frames)  # the long patterns over the short ones' frames
+    long_at = paths.dense(long_rows, frames, np.float32)  # the long patterns over the short ones' frames
     for pattern in short_rows:
         lo, hi = np.searchsorted(frames, [paths.start[pattern], paths.end[pattern] + 1])
         offset = long_at[:, lo:hi] - paths.of(pattern).astype(np.float32)  # NaN where a long one is not seen
@@ -49,13 +49,3 @@ def alone_at_ends(paths: Trajectories, short: np.ndarray, sizes: np.ndarray) -> 
             along = np.einsum("ijk,ijk->ij", offset, offset) <= (reach * reach)[:, None]
         alone[pattern] = not np.any(np.count_nonzero(along, axis=1) >= (hi - lo) / 2)
     return alone
-
-
-def _dense(paths: Trajectories, rows: np.ndarray, frames: np.ndarray) -> np.ndarray:
-    """(len(rows), len(frames), 2) points of trajectories ``rows`` in ``frames`` (increasing), NaN
-    outside their spans."""
-    dense = np.full((rows.size, frames.size, 2), np.nan, dtype=np.float32)
-    for row, pattern in enumerate(rows):
-        lo, hi = np.searchsorted(frames, [paths.start[pattern], paths.end[pattern] + 1])
-        dense[row, lo:hi] = paths.at(pattern, frames[lo:hi])
-    return dense

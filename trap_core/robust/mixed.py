@@ -83,10 +83,7 @@ def _apart_for(paths: Trajectories, patterns: np.ndarray, sizes: np.ndarray, min
     """Whether two of ``patterns`` are further apart than half the sum of their sizes in at least
     ``min_frames`` of the frames both are seen in. Only the clusters of the cut are tested (tens
     of patterns once the background is left out), so a dense (patterns, frames) array is cheap."""
-    first = int(paths.start[patterns].min())
-    dense = np.full((patterns.size, int(paths.end[patterns].max()) - first + 1, 2), np.nan)
-    for row, pattern in enumerate(patterns):
-        dense[row, paths.start[pattern] - first:paths.end[pattern] - first + 1] = paths.of(pattern)
+    dense = paths.dense(patterns, np.arange(paths.start[patterns].min(), paths.end[patterns].max() + 1))
     for row in range(patterns.size - 1):
         gap = np.linalg.norm(dense[row + 1:] - dense[row], axis=2)  # nan where either is unseen
         limit = (sizes[patterns[row + 1:]] + sizes[patterns[row]])[:, None] / 2

@@ -314,6 +314,22 @@ def test_a_first_frame_of_few_felzenszwalb_regions_gets_a_warning(textured_frame
     assert "the first frame has only 1 region at k 7:" in first_frame_setup(plain, params)[1][0]
 
 
+def test_exact_colour_regions_are_refused_on_a_noisy_first_frame() -> None:
+    """Noise (or JPEG) gives nearly every pixel a colour of its own: exact-colour regions would be
+    tens of thousands a frame and mining them would never end, so the first frame is refused."""
+    from trap_core.pipeline import TrapParams, first_frame_setup, graphs_of
+    from trap_core.segmentation import SegmentationError
+    clean, noisy = (next(iter(render(SceneConfig(width=320, height=240, frames=1, seed=3, noise=noise))))
+                    for noise in (0.0, 2.0))
+    colour = TrapParams(segmentation="colour")
+    assert first_frame_setup(clean.rgb, colour) == (colour, [])
+    with pytest.raises(SegmentationError, match=r"^segmentation colour: the first frame has \d+ exact-colour regions "
+                                                r"\(limit 20 x max_regions = 9600\).*use segmentation:=felzenszwalb$"):
+        list(graphs_of([noisy.rgb, clean.rgb], colour))
+    assert first_frame_setup(noisy.rgb, TrapParams(segmentation="colour", max_regions=0))[0].max_regions == 0  # off
+    assert first_frame_setup(noisy.rgb, TrapParams())[0] == TrapParams()  # Felzenszwalb regions: no complaint
+
+
 def test_occurrences_nodes_in_one_pass_are_the_faces_nodes_one_by_one() -> None:
     """The compiled pass over many face sets gives each set the distinct nodes around its
     faces (padding skipped), as the faces' own traversals do."""

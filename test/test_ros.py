@@ -255,6 +255,16 @@ def test_process_bag_keeps_what_it_read_before_a_bad_frame_and_fails(venv_bin: P
         assert {c.topic: c.msgcount for c in reader.connections}["/trap/detections"] == 40
 
 
+def test_process_bag_refuses_exact_colour_regions_on_a_noisy_bag_at_once(venv_bin: Path, tmp_path: Path) -> None:
+    """Exact-colour regions on noisy frames: one error line, last, exit 1, and no hang."""
+    bag, _ = write_synthetic(SceneConfig(width=320, height=240, frames=40, seed=4, noise=2.0), tmp_path / "noisy")
+    done = _process_bag(venv_bin / "process_bag", bag, tmp_path / "out", "--ros-args", "-p", "segmentation:=colour")
+    assert done.returncode == 1
+    last = done.stderr.strip().splitlines()[-1]
+    assert last.startswith("process_bag: error: segmentation colour: the first frame has ") and \
+        last.endswith("use segmentation:=felzenszwalb"), done.stderr[-2000:]
+
+
 def test_process_bag_segments_a_textured_bag_with_the_k_fitted_to_its_first_frame(venv_bin: Path, tmp_path: Path,
                                                                                   textured_frames: list) -> None:
     """The segmentation node fits k on the first frame (max_regions); the summary reports it."""

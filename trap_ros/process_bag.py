@@ -122,6 +122,11 @@ def _main() -> int:
         spinners.start()
         reader.start()
         while not mining.done.wait(timeout=0.2) and not interrupt.is_set():
+            if segmentation.error:  # the first frame was refused: nothing to track
+                reader.stop()
+                reader.finished.wait(timeout=5.0)
+                spinners.stop()
+                raise UsageError(segmentation.error)
             if reader.error and reader.finished.is_set():
                 # The reader stopped on a bad frame and announced what it published before it:
                 # those frames are tracked and written as at a normal end, then the error is raised.

@@ -18,6 +18,7 @@ from sensor_msgs.msg import CompressedImage, Image
 from visualization_msgs.msg import MarkerArray
 
 from trap_core.pipeline import GRAPH_STAGE, first_frame_setup, frame_graph
+from trap_core.segmentation import SegmentationError
 from trap_ros.messages import graph_markers, graph_message, image_rgb
 from trap_ros.node_main import run_node
 from trap_ros.parameters import declare_trap_parameters, trap_parameters
@@ -42,6 +43,7 @@ class SegmentationNode(Node):
         self.published = 0
         self.errors = 0
         self.fitted = False  # whether the first frame set the segmentation up (first_frame_setup)
+        self.error: str | None = None  # why no frame can be segmented (first_frame_setup refused the first)
         self.create_subscription(Image, "image", self._on_image, PIPELINE)
         self.create_timer(0.02, self.publish_done)
 
@@ -53,9 +55,16 @@ class SegmentationNode(Node):
             self.get_logger().error(f"frame skipped: {error}")
             return
         with self.lock:
+            if self.error:
+                return
             if not self.fitted:  # one segmentation scale for the whole video, from its first frame
                 self.fitted = True
-                self.params, notes = first_frame_setup(rgb, self.params)
+                try:
+                    self.params, notes = first_frame_setup(rgb, self.params)
+                except SegmentationError as error:
+                    self.error = str(error)
+                    self.get_logger().error(self.error)
+                    return
                 for note in notes:
                     self.get_logger().warning(note)
             self.pending.append((self.pool.submit(frame_graph, rgb, self.params), message.header))
@@ -102,6 +111,8 @@ def main(args: list[str] | None = None) -> None:
     sys.setswitchinterval(0.0005)  # the executor and the segmentation threads trade the GIL per frame
 
     def body() -> int:
-        rclpy.spin(SegmentationNode())
-        return 0
+        node = SegmentationNode()
+        while rclpy.ok() and not node.error:
+            rclpy.spin_once(node, timeout_sec=0.1)
+        return 1 if node.error else 0
     run_node("segmentation", body, args)

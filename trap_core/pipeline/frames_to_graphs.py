@@ -16,11 +16,12 @@ import numpy as np
 
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, build_plane_graph
-from trap_core.segmentation import colour_components, felzenszwalb
+from trap_core.segmentation import SegmentationError, colour_components, felzenszwalb
 from trap_core.synthetic import SceneConfig, render
 
 FEW_REGIONS = 40  # a first frame with fewer Felzenszwalb regions than this gets a warning (first_frame_setup)
 MAX_K = 1e4  # fitting never raises Felzenszwalb's k beyond this: every colour step of a frame merges long before
+COLOUR_EXCESS = 20  # exact-colour regions are refused on a first frame with more than this times max_regions
 
 
 def frame_graph(rgb: np.ndarray, params: TrapParams) -> PlaneGraph:
@@ -59,11 +60,28 @@ def first_frame_setup(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, 
     (:func:`fitted_to_regions`), and the lines to tell the user about them: that ``k`` was
     raised, and that the first frame has fewer than ``FEW_REGIONS`` Felzenszwalb regions.
 
+    Exact-colour regions (``segmentation: colour``) are made for lossless synthetic frames, where a
+    drawn region is one colour (~250 regions a frame). On noisy or compressed frames (JPEG) nearly
+    every pixel has a colour of its own: hundreds of thousands of regions, and mining them never
+    ends. A first frame with more than ``COLOUR_EXCESS`` times ``max_regions`` of them is refused.
+
+    Raises
+    ------
+    SegmentationError
+        Exact-colour regions on such a frame (one line, naming the way out).
+
     A smooth scene (a face, a sky, a plain wall) cut at ``k`` 7 can give a few giant regions: every
     pattern an object shows then holds one of them, cut by the view's edge, and reads as
     background (README, Natural backgrounds). Nothing is changed for it: a finer cut of a noisy
     scene passes flickering regions for motion, so only the user can choose it.
     """
+    if params.segmentation == "colour" and params.max_regions:
+        count = _regions(_working_size(rgb, params), params)[1]
+        if count > COLOUR_EXCESS * params.max_regions:
+            raise SegmentationError(
+                f"segmentation colour: the first frame has {count} exact-colour regions (limit {COLOUR_EXCESS} x "
+                f"max_regions = {COLOUR_EXCESS * params.max_regions}): its colours are noisy or compressed; "
+                f"use segmentation:=felzenszwalb")
     used, count = _fitted(rgb, params)
     notes = []
     if used != params:

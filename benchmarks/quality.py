@@ -24,6 +24,7 @@ Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,photos
 from __future__ import annotations
 
 import argparse
+import hashlib
 import pickle
 import re
 import time
@@ -223,6 +224,7 @@ DRAWN = [  # drawn at random over cells, a road and photographs (session 20) bef
     ("identical, person, 800x600, turn 15 deg",
      dict(seed=226, identical=True, shape="person", width=800, height=600, rotation=15.0), "colour"),
 ]
+MAX_KEY = 200  # characters of a cached video's file name (scenes with many settings have longer keys)
 FELZENSZWALB_ONLY = ("k", "max_regions", "sigma", "min_size", "threshold", "connectivity")  # no effect on exact-colour regions
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
         "shapes": SHAPES, "recent": RECENT, "fresh": FRESH,
@@ -244,6 +246,8 @@ def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None 
     # under other defaults are not taken for these.
     key = "_".join(f"{k}{v}" for k, v in sorted(scene.items())) + f"_{segmentation}"
     key += "".join(f"_{k}{getattr(params, k)}" for k in used if k != "segmentation")
+    if len(key) > MAX_KEY:  # a file name is at most 255 bytes: long keys keep a readable head and a digest
+        key = f"{key[:MAX_KEY - 17]}_{hashlib.sha256(key.encode()).hexdigest()[:16]}"
     path = cache / f"{key}.pkl"
     if path.exists():
         with open(path, "rb") as f:

@@ -31,6 +31,7 @@ from trap_core.rag import PlaneGraph
 from trap_core.robust import reaches_border
 
 MIN_IOU = 0.5  # boxes that hold the same object
+MOST_SHARED = 0.75  # a track seen in fewer than tau shared frames continues one it matches in this share of them
 
 
 @dataclass(frozen=True)
@@ -158,15 +159,19 @@ class ChunkedTracker:
                                             result.seconds))
 
     def _continued(self, previous: list[Track], current: list[Track]) -> dict[int, int]:
-        """{index in ``current``: id of the previous chunk's track it continues}."""
+        """{index in ``current``: id of the previous chunk's track it continues}: boxes that match
+        in ``tau`` shared frames, or, where the two tracks share fewer (one starts late in the
+        overlap, or the other ends early), in ``MOST_SHARED`` of at least ``tau``/2 of them."""
         shared = np.arange(self._start, self._start + self.overlap)
+        tau = self.params.tau
         matches = []
         for i, new in enumerate(current):
             for old in previous:
                 frames, in_new, in_old = np.intersect1d(new.frames, old.frames, return_indices=True)
                 inside = np.isin(frames, shared)
+                both = int(inside.sum())
                 same = int((box_iou(new.boxes[in_new[inside]], old.boxes[in_old[inside]]) >= MIN_IOU).sum())
-                if same >= self.params.tau:
+                if same >= tau or (2 * both >= tau and same >= MOST_SHARED * both):
                     matches.append((same, i, old.track_id))
         taken_new: dict[int, int] = {}
         taken_old: set[int] = set()

@@ -27,11 +27,13 @@ COLOUR_EXCESS = 20  # exact-colour regions are refused on a first frame with mor
 def frame_graph(rgb: np.ndarray, params: TrapParams) -> PlaneGraph:
     """Regions (segmentation or exact colours) and their plane graph for one frame.
 
-    A frame whose longer side exceeds ``params.max_side`` is segmented at that size (nearest
-    pixels: averaging would blend the colours along every edge into strips of regions of their
-    own, and exact-colour regions must keep exact colours), so an object is cut into as many
-    regions as at the size the defaults were made for, whatever the camera's resolution; the
-    graph's geometry is then given back in the frame's own pixels.
+    A frame is segmented with its longer side scaled to ``params.max_side`` (nearest pixels:
+    averaging would blend the colours along every edge into strips of regions of their own, and
+    exact-colour regions must keep exact colours), so an object is cut into as many regions as
+    at the size the defaults were made for, whatever the camera's resolution: a large frame at
+    the paper's ``k`` would give thousands of regions, and in a small one ``min_size`` pixels
+    and Gaussian smoothing swallow an object's parts. The graph's geometry is then given back in
+    the frame's own pixels.
     """
     height, width = rgb.shape[:2]
     small = _working_size(rgb, params)
@@ -122,9 +124,9 @@ def _fitted(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, int | None
 
 
 def _working_size(rgb: np.ndarray, params: TrapParams) -> np.ndarray:
-    """The frame at the size it is segmented: scaled down (nearest pixels) to ``params.max_side``."""
+    """The frame at the size it is segmented: its longer side scaled (nearest pixels) to ``params.max_side``."""
     height, width = rgb.shape[:2]
-    if not params.max_side or max(height, width) <= params.max_side:
+    if not params.max_side or max(height, width) == params.max_side:
         return rgb
     factor = params.max_side / max(height, width)
     size = (max(1, round(width * factor)), max(1, round(height * factor)))
@@ -140,16 +142,24 @@ def _regions(small: np.ndarray, params: TrapParams) -> tuple[np.ndarray, int]:
 
 
 def _in_frame_pixels(graph: PlaneGraph, scale_x: float, scale_y: float) -> PlaneGraph:
-    """``graph`` of a frame segmented ``scale`` times smaller, with positions, boxes, areas and
-    contact lengths in the frame's pixels (boxes: every pixel a region's pixels cover)."""
+    """``graph`` of a frame segmented ``scale`` times smaller (larger, below 1), with positions,
+    boxes, areas and contact lengths in the frame's pixels. Boxes hold every frame pixel a
+    region's pixels cover: scaled down, a working pixel covers a block of them; scaled up, it
+    shows the frame pixel its position rounds down to (``cv2.INTER_NEAREST``), and the block's
+    end would add a pixel to every box."""
     centroid = (graph.centroid + 0.5) * np.array([scale_x, scale_y], dtype=np.float32) - 0.5
     box = graph.bbox.astype(float)
     bbox = np.column_stack([np.floor(box[:, 0] * scale_x), np.floor(box[:, 1] * scale_y),
-                            np.ceil((box[:, 2] + 1) * scale_x) - 1, np.ceil((box[:, 3] + 1) * scale_y) - 1])
+                            _last_pixel(box[:, 2], scale_x), _last_pixel(box[:, 3], scale_y)])
     return dataclasses.replace(
         graph, centroid=centroid.astype(np.float32), bbox=bbox.astype(np.int32),
         area=np.rint(graph.area * scale_x * scale_y).astype(np.int32),
         he_length=np.maximum(1, np.rint(graph.he_length * np.sqrt(scale_x * scale_y))).astype(np.int32))
+
+
+def _last_pixel(last: np.ndarray, scale: float) -> np.ndarray:
+    """The last frame pixel of a box whose last working pixel is ``last`` (:func:`_in_frame_pixels`)."""
+    return np.floor(last * scale) if scale < 1 else np.ceil((last + 1) * scale) - 1
 
 
 def graphs_of(frames: Iterable[np.ndarray], params: TrapParams,

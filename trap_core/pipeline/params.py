@@ -38,9 +38,9 @@ class TrapParams:
     min_size: int = _p(20, "regions smaller than this (pixels) are merged")
     threshold: str = _p("constant", "constant (paper: tau = k) or size (original: tau = k/|C|)")
     connectivity: int = _p(4, "pixel connectivity of the segmentation: 4 or 8")
-    max_side: int = _p(640, "px: frames whose longer side exceeds this are segmented scaled down to it, so objects "
-                            "get as many regions as at the size the defaults were made for; results stay in the "
-                            "frame's pixels (ours); 0 = full size")
+    max_side: int = _p(640, "px: frames are segmented with their longer side scaled to this (down, or up for smaller "
+                            "frames), so objects get as many regions as at the size the defaults were made for; "
+                            "results stay in the frame's pixels (ours); 0 = each frame at its own size")
     colour_bins: int = _p(4, "levels per colour channel of the node labels; grey regions get its square (ours)")
     contact_tolerance: float = _p(0.0, "drop contacts shorter than this x sqrt(smaller region area) px, so faces do "
                                        "not flicker with pixel rounding (ours); 0 = keep all (paper)")
@@ -165,12 +165,12 @@ class TrapParams:
 
     def in_frame_pixels(self, width: float, height: float) -> TrapParams:
         """These parameters for frames of ``width`` x ``height``: ``separation`` is in pixels of
-        the working size, so it grows with frames segmented scaled down (``max_side``), as the
-        objects do. ``eps`` stays in frame pixels: it only bounds a link whose step is already
+        the working size, so it grows and shrinks with the frames segmented scaled (``max_side``),
+        as the objects do. ``eps`` stays in frame pixels: it only bounds a link whose step is already
         bounded by the pattern's own size (``link_reach``), and scaling it too was measured worse
         (more links across look-alikes)."""
         side = max(width, height)
-        if not self.max_side or side <= self.max_side:
+        if not self.max_side or side == self.max_side:
             return self
         return dataclasses.replace(self, separation=self.separation * side / self.max_side)
 

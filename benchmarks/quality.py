@@ -18,7 +18,7 @@ MOTA / IDF1 / HOTA; per set, the mean precision x recall, the share of objects a
 better and the mean MOTA / IDF1, and that share over all sets run; with ``--pictures DIR``, each
 video's tracks as a contact sheet and a timeline. Graphs are cached (``--cache``), so a second
 run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,photos,drawn] [-p name:=value]``
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,photos,drawn,random] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
@@ -224,12 +224,51 @@ DRAWN = [  # drawn at random over cells, a road and photographs (session 20) bef
     ("identical, person, 800x600, turn 15 deg",
      dict(seed=226, identical=True, shape="person", width=800, height=600, rotation=15.0), "colour"),
 ]
+RANDOM = [  # drawn at random (session 31: sizes 320x240 to 1280x720, 300 to 721 frames, any background), tracked as
+    # it came; the working size for small frames and nothing else was changed on it
+    ("identical, mixed shapes, 3 objects 1.2x, 800x600, 300 frames, zoom 10 %, noise 2, camera",
+     dict(seed=981, identical=True, objects=3, shape="mixed", background="camera", width=800, height=600,
+          frames=300, noise=2.0, zoom=0.1, object_scale=1.2), "felzenszwalb"),
+    ("distinct, car, 2 objects, 800x600, 721 frames, zoom 5 %, illumination 5 %, hubble_deep_field",
+     dict(seed=982, objects=2, shape="car", background="hubble_deep_field", width=800, height=600, frames=721,
+          zoom=0.05, illumination=0.05), "felzenszwalb"),
+    ("distinct, mixed shapes, 2 objects 0.8x, 320x240, 300 frames, noise 0.5, retina",
+     dict(seed=983, objects=2, shape="mixed", background="retina", width=320, height=240, frames=300, noise=0.5,
+          object_scale=0.8), "felzenszwalb"),
+    ("identical, person, 5 objects, 640x480, 721 frames, noise 2, road",
+     dict(seed=984, identical=True, objects=5, shape="person", background="road", width=640, height=480,
+          frames=721, noise=2.0), "felzenszwalb"),
+    ("distinct, person, 4 objects, 320x240, 450 frames, noise 0.5, retina",
+     dict(seed=985, objects=4, shape="person", background="retina", width=320, height=240, frames=450,
+          noise=0.5), "felzenszwalb"),
+    ("distinct, car, 5 objects, 320x240, 300 frames, road",
+     dict(seed=986, objects=5, shape="car", background="road", width=320, height=240, frames=300),
+          "felzenszwalb"),
+    ("identical, person, 2 objects 1.2x, 640x480, 721 frames, noise 0.5, colorwheel",
+     dict(seed=987, identical=True, objects=2, shape="person", background="colorwheel", width=640, height=480,
+          frames=721, noise=0.5, object_scale=1.2), "felzenszwalb"),
+    ("identical, person, 3 objects, 320x240, 721 frames, noise 0.5, immunohistochemistry",
+     dict(seed=988, identical=True, objects=3, shape="person", background="immunohistochemistry", width=320,
+          height=240, frames=721, noise=0.5), "felzenszwalb"),
+    ("identical, person, 4 objects 1.2x, 640x480, 721 frames, gravel",
+     dict(seed=989, identical=True, objects=4, shape="person", background="gravel", width=640, height=480,
+          frames=721, object_scale=1.2), "felzenszwalb"),
+    ("identical, car, 5 objects, 960x540, 450 frames, turn 10 deg, brick",
+     dict(seed=990, identical=True, objects=5, shape="car", background="brick", width=960, height=540,
+          frames=450, rotation=10.0), "felzenszwalb"),
+    ("identical, person, 4 objects 1.2x, 960x540, 721 frames, zoom 10 %, colorwheel",
+     dict(seed=991, identical=True, objects=4, shape="person", background="colorwheel", width=960, height=540,
+          frames=721, zoom=0.1, object_scale=1.2), "felzenszwalb"),
+    ("distinct, disc, 4 objects 0.8x, 320x240, 721 frames, turn 15 deg, illumination 5 %, noise 2, gravel",
+     dict(seed=992, objects=4, shape="disc", background="gravel", width=320, height=240, frames=721, noise=2.0,
+          rotation=15.0, illumination=0.05, object_scale=0.8), "felzenszwalb"),
+]
 MAX_KEY = 200  # characters of a cached video's file name (scenes with many settings have longer keys)
 FELZENSZWALB_ONLY = ("k", "max_regions", "sigma", "min_size", "threshold", "connectivity")  # no effect on exact-colour regions
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
         "shapes": SHAPES, "recent": RECENT, "fresh": FRESH,
         "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST, "unseen": UNSEEN, "blind": BLIND,
-        "photos": PHOTOS, "drawn": DRAWN}
+        "photos": PHOTOS, "drawn": DRAWN, "random": RANDOM}
 
 
 def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None = None,

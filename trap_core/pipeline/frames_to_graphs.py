@@ -67,15 +67,15 @@ def first_frame_setup(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, 
     every pixel has a colour of its own: hundreds of thousands of regions, and mining them never
     ends. A first frame with more than ``COLOUR_EXCESS`` times ``max_regions`` of them is refused.
 
-    Raises
-    ------
-    SegmentationError
-        Exact-colour regions on such a frame (one line, naming the way out).
-
     A smooth scene (a face, a sky, a plain wall) cut at ``k`` 7 can give a few giant regions: every
     pattern an object shows then holds one of them, cut by the view's edge, and reads as
     background (README, Natural backgrounds). Nothing is changed for it: a finer cut of a noisy
     scene passes flickering regions for motion, so only the user can choose it.
+
+    Raises
+    ------
+    SegmentationError
+        Exact-colour regions on such a frame (one line, naming the way out).
     """
     if params.segmentation == "colour" and params.max_regions:
         count = _regions(_working_size(rgb, params), params)[1]
@@ -142,8 +142,8 @@ def _regions(small: np.ndarray, params: TrapParams) -> tuple[np.ndarray, int]:
 
 
 def _in_frame_pixels(graph: PlaneGraph, scale_x: float, scale_y: float) -> PlaneGraph:
-    """``graph`` of a frame segmented ``scale`` times smaller (larger, below 1), with positions,
-    boxes, areas and contact lengths in the frame's pixels. Boxes hold every frame pixel a
+    """``graph`` of a frame segmented at 1/``scale`` of its size (a scale below 1: scaled up), with
+    positions, boxes, areas and contact lengths in the frame's pixels. Boxes hold every frame pixel a
     region's pixels cover: scaled down, a working pixel covers a block of them; scaled up, it
     shows the frame pixel its position rounds down to (``cv2.INTER_NEAREST``), and the block's
     end would add a pixel to every box."""

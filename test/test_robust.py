@@ -1457,7 +1457,8 @@ def test_boxes_after_an_object_left_the_view_are_dropped() -> None:
     """An object leaves through the left border (its box shrinks there to 5 px), then the
     patterns go on with something else clear of the border: those boxes are not the object, nor
     is a later box inside the view; one at the border is its return. An object that only dips
-    into the border and comes back keeps every box."""
+    into the border and comes back keeps every box, as does one coming back into view whose
+    first boxes shrink at the border: it was not seen whole before."""
     from trap_core.robust import end_at_exits
     frames = np.arange(40)
     x = 100.0 - 5 * frames
@@ -1476,6 +1477,15 @@ def test_boxes_after_an_object_left_the_view_are_dropped() -> None:
     dipping = boxes[:35].copy()
     dipping[28:, 2] = np.linspace(10, 40, 7)  # grows back at the border: never left
     assert len(end_at_exits(_as_track(1, frames[:35], dipping), 640, 480, min_gap=12)) == 35
+    # Coming back into view after a long gap, its first boxes on the border shrink (noisy
+    # patterns) before one clears it: it was never seen whole in this run, so it did not leave.
+    entering = np.column_stack([np.r_[0.0, 0.0, 0.0, 0.0, 8.0, 12.0, 20.0], np.full(7, 200.0),
+                                np.r_[40.0, 40.0, 25.0, 12.0, 30.0, 40.0, 40.0], np.full(7, 30.0)])
+    comes_back = _as_track(1, np.r_[frames[:28], 60:67], np.vstack([boxes[:28], entering]))
+    assert end_at_exits(comes_back, 640, 480, min_gap=12).frames.tolist() == list(range(28)) + list(range(60, 67))
+    seen_first = _as_track(1, np.r_[frames[:28], 60:68], np.vstack([boxes[:28], [[300.0, 200.0, 40.0, 30.0]],
+                                                                     entering]))
+    assert end_at_exits(seen_first, 640, 480, min_gap=12).frames.tolist() == list(range(28)) + list(range(60, 65))
 
 
 def test_a_track_that_takes_over_where_another_ended_is_appended_to_it() -> None:

@@ -93,7 +93,9 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     """The track without the boxes that follow its object's exit from the view until it comes
     back through the border.
 
-    An exit: over ``leaving`` frames the box lies on one image border, shrinking across it, and
+    An exit: the box was clear of every border earlier in its run (a run starts after a gap of
+    more than ``min_gap`` frames), then over ``leaving`` frames it lies on one image border,
+    shrinking across it, and
     ends less than half the track's usual extent across it (the median of its boxes fully in
     view), and the next box is off that border. A body mostly out of view cannot be clear of
     the border a frame later unless it moves half its size in a frame: the patterns went on with
@@ -125,13 +127,17 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     extent = np.column_stack([w, h, w, h])
     usual = np.median(extent[whole], axis=0)
     frames = track.frames
+    starts = np.r_[True, np.diff(frames) > min_gap]
     # a run's first box may be a sliver of the object at the border: reach measured at its usual size
-    entering = np.r_[True, np.diff(frames) > min_gap] & reaches_border(boxes, width, height, size=usual[:2])
+    entering = starts & reaches_border(boxes, width, height, size=usual[:2])
+    # an object coming into view lies on the border, its boxes as noisy as its patterns: seen whole first, it can leave
+    whole_before = _seen_whole_in_run(whole, starts)
     keep = np.ones(frames.size, dtype=bool)
     row = leaving - 1
     while row < frames.size - 1:
         span = np.arange(row - leaving + 1, row + 2)  # the leaving frames and the next
-        exit_side = (np.all(np.diff(frames[span]) == 1) & sides[span[:-1]].all(axis=0) & ~sides[row + 1]
+        exit_side = (whole_before[span[0]] & np.all(np.diff(frames[span]) == 1) & sides[span[:-1]].all(axis=0)
+                     & ~sides[row + 1]
                      & (extent[row] < usual / 2) & np.all(np.diff(extent[span[:-1]], axis=0) <= 0, axis=0))
         if exit_side.any():
             back = np.flatnonzero(entering[row + 1:])
@@ -141,3 +147,11 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
         else:
             row += 1
     return track if keep.all() else in_rows(track, keep)
+
+
+def _seen_whole_in_run(whole: np.ndarray, starts: np.ndarray) -> np.ndarray:
+    """(n,) bool: whether a box before row i in row i's run (``starts``: where runs begin) is ``whole``."""
+    run = np.cumsum(starts) - 1
+    seen = np.cumsum(whole)  # whole boxes up to and including each row
+    before_run = np.r_[0, seen][np.flatnonzero(starts)][run]  # whole boxes before the row's run
+    return np.r_[0, seen[:-1]] - before_run > 0

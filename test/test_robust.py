@@ -751,6 +751,27 @@ def test_a_box_on_a_small_part_grows_over_the_body_around_it() -> None:
                                                              np.full(11, 40)]))
 
 
+def test_a_box_never_grows_over_the_backdrop() -> None:
+    """Over a plain scene one region, the backdrop, encloses every object's box, and while the
+    camera pans its barycentre stays in the middle of the view, far from where the camera's
+    motion puts it, and near enough where the track's puts it: it is still the scene."""
+    from trap_core.clustering import Track
+    from trap_core.robust import grow_boxes
+    params = TrapParams(segmentation="colour")
+    graphs = []
+    for t in range(11):
+        rgb = np.full((120, 200, 3), 40, np.uint8)
+        rgb[46:54, 60 + t:70 + t] = (200, 0, 0)
+        graphs.append(frame_graph(rgb, params))
+    assert graphs[5].backdrop.sum() == 1
+    frames = np.arange(11)
+    part = np.column_stack([60 + frames, np.full(11, 46), np.full(11, 10), np.full(11, 8)]).astype(float)
+    panning = np.tile(np.eye(3), (11, 1, 1))
+    panning[:, 0, 2] = -6.0 * frames  # the scene moves 6 px a frame to the left
+    grown = grow_boxes(Track(1, frames, part, np.ones(11), 1), graphs, panning, lag=5)
+    np.testing.assert_allclose(grown.boxes, part)
+
+
 def test_a_box_grows_again_over_parts_beyond_the_first_search_found_on_both_sides() -> None:
     """Three parts in a row, the track's patterns on the first: the third is beyond the first
     search around it, and is taken by a second round where the track has boxes on both sides."""

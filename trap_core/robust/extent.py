@@ -30,7 +30,9 @@ from trap_core.robust._kernels import moving_regions
 from trap_core.robust.gaps import fill_gaps
 
 # Regions larger than this times the box are background, whatever their motion, unless they
-# enclose the box: a box on a small part of the object is inside the body around that part.
+# enclose the box: a box on a small part of the object is inside the body around that part. The
+# backdrop encloses every box and is never taken: over a panning camera its barycentre stays in
+# the middle of the view, and can sit where the track's motion puts it (988: boxes of the whole frame).
 MAX_AREA = 4.0
 
 
@@ -79,6 +81,7 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
                                     there.label, core[slot[frame]], there_box, boxes[i], camera, reach,
                                     tolerance, MAX_AREA) for there, there_box, camera in sides]
             moving = np.logical_or.reduce(found) if round_ == 0 else np.logical_and.reduce(found)
+            moving &= ~here.backdrop
             if not np.any(moving):
                 break
             grown = _around(boxes[i], here.nodes_box(moving))

@@ -95,14 +95,13 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
 
     An exit: the box was clear of every border earlier in its run (a run starts after a gap of
     more than ``min_gap`` frames), then over ``leaving`` frames it lies on one image border,
-    shrinking across it, and
-    ends less than half the track's usual extent across it (the median of its boxes fully in
-    view), and the next box is off that border. A body mostly out of view cannot be clear of
-    the border a frame later unless it moves half its size in a frame: the patterns went on with
-    something else (noise, a neighbour) once the object was gone. Nor can it come back but
-    through the border: boxes are dropped up to a run (after a gap of more than ``min_gap``
-    frames) whose first box reaches the border (:func:`reaches_border`, within a quarter of
-    the object's usual extent: that box may be a sliver of it).
+    shrinking across it, and ends less than half the track's usual extent across it (the median
+    of its boxes fully in view), and the next box is off that border. A body mostly out of view
+    cannot be clear of the border a frame later unless it moves half its size in a frame: the
+    patterns went on with something else (noise, a neighbour) once the object was gone. Nor can
+    it come back but through the border: boxes are dropped up to a run (after a gap of more than
+    ``min_gap`` frames) whose first box reaches the border (:func:`reaches_border`, within a
+    quarter of the object's usual extent: that box may be a sliver of it).
 
     Parameters
     ----------
@@ -137,8 +136,8 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     while row < frames.size - 1:
         span = np.arange(row - leaving + 1, row + 2)  # the leaving frames and the next
         exit_side = (whole_before[span[0]] & np.all(np.diff(frames[span]) == 1) & sides[span[:-1]].all(axis=0)
-                     & ~sides[row + 1]
-                     & (extent[row] < usual / 2) & np.all(np.diff(extent[span[:-1]], axis=0) <= 0, axis=0))
+                     & ~sides[row + 1] & (extent[row] < usual / 2)
+                     & np.all(np.diff(extent[span[:-1]], axis=0) <= 0, axis=0))
         if exit_side.any():
             back = np.flatnonzero(entering[row + 1:])
             stop = row + 1 + (back[0] if back.size else frames.size)

@@ -16,7 +16,7 @@ import sys
 import time
 from pathlib import Path
 
-from trap_core.evaluation import mot_measures
+from trap_core.evaluation import boxes_by_frame, mot_measures
 from trap_core.pipeline import ChunkedTracker, TrapParams, graphs_of
 from trap_core.synthetic import SceneConfig, render
 
@@ -39,7 +39,7 @@ def _worker(frames: int, chunk: int) -> None:
         tracker.add(graph)
     run = tracker.finish()
     seconds = time.perf_counter() - start
-    boxes = [{int(f): tuple(b) for f, b in zip(t.frames, t.boxes)} for t in run.tracks]
+    boxes = [boxes_by_frame(t) for t in run.tracks]
     scores = mot_measures(boxes, truth)
     print(json.dumps({"chunk": chunk, "chunks": len(run.chunks), "tracks": len(run.tracks), "seconds": seconds,
                       "peak RSS MB": _peak_rss_mb(), "MOTA": scores["MOTA"], "IDF1": scores["IDF1"]}))

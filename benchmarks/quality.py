@@ -33,7 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from trap_core.cli import parameter_assignment
-from trap_core.evaluation import match_objects, mot_measures
+from trap_core.evaluation import boxes_by_frame, match_objects, mot_measures
 from trap_core.clustering import Track
 from trap_core.outputs import Thumbnails, contact_sheet, track_timeline
 from trap_core.pipeline import GRAPH_STAGE, TrapParams, synthetic_graphs, track
@@ -333,7 +333,7 @@ def main() -> None:
             if args.pictures:
                 slug = re.sub(r"[^0-9A-Za-z]+", "_", label).strip("_")
                 _pictures(scene, result.tracks, len(graphs), args.pictures / f"{name}_{slug}")
-            boxes = [{int(f): tuple(b) for f, b in zip(t.frames, t.boxes)} for t in result.tracks]
+            boxes = [boxes_by_frame(t) for t in result.tracks]
             objects = match_objects(boxes, truth)
             scores = mot_measures(boxes, truth)
             products += [p * r for _, p, r in objects]

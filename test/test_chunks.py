@@ -6,7 +6,7 @@ import pytest
 
 import trap_core.pipeline.chunks as chunks
 from trap_core.clustering import Track
-from trap_core.evaluation import match_objects
+from trap_core.evaluation import boxes_by_frame, match_objects
 from trap_core.pipeline import ChunkedTracker, ParameterError, TrapParams, synthetic_graphs, track
 from trap_core.synthetic import SceneConfig
 
@@ -91,7 +91,7 @@ def test_one_chunk_is_the_whole_video_and_chunks_keep_the_objects() -> None:
     run = chunked.finish()
     assert len(run.chunks) == 2
     assert len(run.tracks) == len(truth)  # every object keeps one id across the chunk border...
-    boxes = [{int(f): tuple(b) for f, b in zip(t.frames, t.boxes)} for t in run.tracks]
+    boxes = [boxes_by_frame(t) for t in run.tracks]
     assert all(recall >= 0.9 for _, _, recall in match_objects(boxes, truth))  # ...and is followed in both chunks
     for t in run.tracks:
         assert np.all(np.diff(t.frames) > 0)

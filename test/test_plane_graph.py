@@ -277,13 +277,13 @@ def test_objects_in_small_frames_are_tracked_at_the_working_size() -> None:
     """240x180 frames over a photograph: at their own size, min_size pixels and the smoothing
     merge a small object's parts into the background and one object of three goes untracked
     (measured); segmented at 640x320 every object is."""
-    from trap_core.evaluation import match_objects
+    from trap_core.evaluation import boxes_by_frame, match_objects
     from trap_core.pipeline import TrapParams, synthetic_graphs, track
     params = TrapParams()
     graphs, truth = synthetic_graphs(SceneConfig(width=240, height=180, frames=240, seed=1, background="retina",
                                                  noise=0.5), params)
     tracks = track(graphs, params).tracks
-    boxes = [{int(f): tuple(b) for f, b in zip(t.frames, t.boxes)} for t in tracks]
+    boxes = [boxes_by_frame(t) for t in tracks]
     assert len(tracks) == 3
     assert all(precision >= 0.85 and recall >= 0.9 for _, precision, recall in match_objects(boxes, truth))
 

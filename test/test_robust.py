@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from trap_core.clustering import ObservedPaths, Trajectories, observed_paths
-from trap_core.evaluation import box_precision_recall
+from trap_core.evaluation import box_precision_recall, boxes_by_frame
 from trap_core.mining import MiningResult
 from trap_core.mining._kernels import assign_occurrences, link_occurrences
 from trap_core.pipeline import TrapParams, frame_graph, synthetic_graphs, track
@@ -638,10 +638,6 @@ def short_video(request) -> tuple[list, list[dict[int, tuple]]]:
     return synthetic_graphs(SceneConfig(width=320, height=240, frames=240, seed=1, **PRESETS[request.param]), _BASE)
 
 
-def _boxes(track_) -> dict[int, tuple]:
-    return {int(f): tuple(b) for f, b in zip(track_.frames, track_.boxes)}
-
-
 def test_robust_beats_paper_on_a_short_video(short_video) -> None:
     graphs, truth = short_video
 
@@ -649,7 +645,7 @@ def test_robust_beats_paper_on_a_short_video(short_video) -> None:
         tracks = track(graphs, TrapParams(**{**_BASE.as_dict(), "method": method})).tracks
         scores = []
         for gt in truth:
-            pr = [box_precision_recall(_boxes(t), gt) for t in tracks]
+            pr = [box_precision_recall(boxes_by_frame(t), gt) for t in tracks]
             scores.append(max((p * r for p, r in pr), default=0.0))
         return scores
 
@@ -674,7 +670,7 @@ def test_a_turning_zooming_camera_is_told_from_the_objects() -> None:
                                                  zoom=0.15), params)
     tracks = track(graphs, params).tracks
     assert len(tracks) == 3
-    assert all(p >= 0.9 and r >= 0.9 for _, p, r in match_objects([_boxes(t) for t in tracks], truth))
+    assert all(p >= 0.9 and r >= 0.9 for _, p, r in match_objects([boxes_by_frame(t) for t in tracks], truth))
 
 
 def test_chains_hopping_over_bricks_are_no_tracks() -> None:
@@ -689,7 +685,7 @@ def test_chains_hopping_over_bricks_are_no_tracks() -> None:
 
     def people_and_strays(steady_steps: float) -> tuple[int, int]:
         tracks = track(graphs, dataclasses.replace(params, steady_steps=steady_steps)).tracks
-        matched = match_objects([_boxes(t) for t in tracks], truth)
+        matched = match_objects([boxes_by_frame(t) for t in tracks], truth)
         return sum(p >= 0.8 and r >= 0.9 for _, p, r in matched), len(tracks) - len(truth)
 
     assert people_and_strays(0.0)[1] >= 4
@@ -703,7 +699,7 @@ def test_mining_in_windows_keeps_the_tracks(short_video) -> None:
     windowed = track(graphs, TrapParams(**{**_BASE.as_dict(), "mining_window": 80}))  # 4 windows
     assert len(windowed.tracks) == len(whole.tracks) > 0
     for reference in whole.tracks:
-        scores = [box_precision_recall(_boxes(t), _boxes(reference)) for t in windowed.tracks]
+        scores = [box_precision_recall(boxes_by_frame(t), boxes_by_frame(reference)) for t in windowed.tracks]
         assert max(p * r for p, r in scores) > 0.9
 
 
@@ -1012,7 +1008,7 @@ def test_an_object_back_in_view_for_the_videos_last_20_frames_is_tracked_there()
 
     def recall_back(freq_st_cut: int) -> float:
         tracks = track(graphs, dataclasses.replace(params, freq_st_cut=freq_st_cut)).tracks
-        boxes = [{int(f): tuple(b) for f, b in zip(t.frames, t.boxes)} for t in tracks]
+        boxes = [boxes_by_frame(t) for t in tracks]
         matched = match_objects(boxes, truth)[2][0]
         return box_precision_recall(boxes[matched], back)[1] if matched is not None else 0.0
 
@@ -1705,7 +1701,7 @@ def test_discs_on_a_cat_cut_by_its_backdrop_only_are_tracks() -> None:
     assert np.all(with_backdrop > CUT_SHARE)  # the rule made them tracks
     free = border_share(without_backdrop(result.mining, graphs), patterns, labels, 640, 480)[result.selected]
     assert np.all(free <= CUT_SHARE)
-    matched = match_objects([_boxes(t) for t in result.tracks], truth)
+    matched = match_objects([boxes_by_frame(t) for t in result.tracks], truth)
     assert len(result.tracks) == 3 and all(p >= 0.9 and r >= 0.75 for _, p, r in matched)
 
 

@@ -20,7 +20,7 @@ from trap_core.cli import UsageError, parameter_assignment, results_folder, run_
 from trap_core.evaluation.baselines import TRACKERS, run_baselines  # noqa: E402
 from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores, level_curves  # noqa: E402
 from trap_core.evaluation.paper_measures import box_precision_recall, cluster_precision_recall  # noqa: E402
-from trap_core.evaluation.scoring import match_objects, mot_measures  # noqa: E402
+from trap_core.evaluation.scoring import boxes_by_frame, match_objects, mot_measures  # noqa: E402
 from trap_core.motformat import ground_truth_path, read_mot  # noqa: E402
 from trap_core.outputs import Thumbnails, contact_sheet  # noqa: E402
 from trap_core.pipeline import TrapParams, graphs_of, track  # noqa: E402
@@ -84,7 +84,7 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
         start = time.perf_counter()
         run = track(graphs, params)
         seconds = time.perf_counter() - start
-        boxes = [{int(f): tuple(b) for f, b in zip(t.frames, t.boxes)} for t in run.tracks]
+        boxes = [boxes_by_frame(t) for t in run.tracks]
         matched = match_objects(boxes, truth)
         objects = []
         for (k, p, r), gt in zip(matched, truth):

@@ -5,10 +5,16 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
+from trap_core.clustering import Track
 from trap_core.evaluation.mot_metrics import clear_mot, hota, idf1
 from trap_core.evaluation.paper_measures import box_precision_recall
 
 Boxes = dict[int, tuple]  # frame (0-based) -> (x, y, w, h)
+
+
+def boxes_by_frame(track: Track) -> Boxes:
+    """The track's boxes as the scores take them (and the ground truth comes): frame -> (x, y, w, h)."""
+    return {int(frame): tuple(box) for frame, box in zip(track.frames, track.boxes)}
 
 
 def match_objects(boxes_per_track: list[Boxes], truth: list[Boxes]) -> list[tuple[int | None, float, float]]:

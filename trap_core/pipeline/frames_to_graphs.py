@@ -126,9 +126,10 @@ def _fitted(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, int | None
 def _working_size(rgb: np.ndarray, params: TrapParams) -> np.ndarray:
     """The frame at the size it is segmented: its longer side scaled (nearest pixels) to ``params.max_side``."""
     height, width = rgb.shape[:2]
-    if not params.max_side or max(height, width) == params.max_side:
+    working = params.working_side(width, height)
+    if working is None:
         return rgb
-    factor = params.max_side / max(height, width)
+    factor = working / max(height, width)
     size = (max(1, round(width * factor)), max(1, round(height * factor)))
     return cv2.resize(rgb, size, interpolation=cv2.INTER_NEAREST)
 

@@ -169,10 +169,15 @@ class TrapParams:
         as the objects do. ``eps`` stays in frame pixels: it only bounds a link whose step is already
         bounded by the pattern's own size (``link_reach``), and scaling it too was measured worse
         (more links across look-alikes)."""
-        side = max(width, height)
-        if not self.max_side or side == self.max_side:
+        working = self.working_side(width, height)
+        if working is None:
             return self
-        return dataclasses.replace(self, separation=self.separation * side / self.max_side)
+        return dataclasses.replace(self, separation=self.separation * max(width, height) / working)
+
+    def working_side(self, width: float, height: float) -> int | None:
+        """The longer side frames of ``width`` x ``height`` are segmented at when it is not
+        their own (``max_side``), else None."""
+        return None if not self.max_side or max(width, height) == self.max_side else self.max_side
 
     def as_dict(self) -> dict[str, Any]:
         return dataclasses.asdict(self)

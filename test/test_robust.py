@@ -460,6 +460,31 @@ def test_border_share_counts_occurrences_cut_by_the_edge_per_cluster() -> None:
     assert share.tolist() == [1.0, 1 / 3]
 
 
+def test_hopping_patterns_count_against_a_cluster_only_outside_its_steady_patterns_spans() -> None:
+    """Cluster 0: a steady pattern over frames 0-9 (10 occurrences) and two hopping ones of 6,
+    one in frames 2-7 (vouched for), one in frames 20-25 (not). Cluster 1: the same hoppers'
+    twins, and its steady pattern is seen only in frames 4-7: one hopper has 4 of its 6 within it,
+    the other only in frame 7 of its 6. Cluster 2: hoppers only."""
+    from trap_core.robust import unvouched_hop_share
+    frames = [range(0, 10), range(2, 8), range(20, 26),      # cluster 0
+              range(4, 8), range(2, 8), range(7, 13),       # cluster 1
+              range(0, 6)]                                  # cluster 2
+    occ_frame = np.concatenate([np.array(f) for f in frames])
+    sizes = np.array([len(f) for f in frames])
+    n = occ_frame.size
+    empty = np.zeros(len(frames))
+    result = MiningResult(empty, empty, empty, occ_frame, np.zeros(n, int), np.zeros((n, 2)), np.zeros((n, 4)),
+                          np.zeros((n, 4)), np.zeros((n, 3), int), np.zeros(len(frames), int),
+                          np.r_[0, np.cumsum(sizes)], np.arange(n))
+    labels = np.array([0, 0, 0, 1, 1, 1, 2])
+    hopping = np.array([False, True, True, False, True, True, True])
+    share = unvouched_hop_share(result, np.arange(len(frames)), labels, hopping, ~hopping)
+    np.testing.assert_allclose(share, [6 / 22, 6 / 16, 1.0])
+    # with nothing steady, every hopper counts
+    np.testing.assert_allclose(unvouched_hop_share(result, np.arange(len(frames)), labels, hopping,
+                                                   np.zeros(len(frames), bool)), [12 / 22, 12 / 16, 1.0])
+
+
 def test_patterns_seen_whole_leave_a_cluster_seen_mostly_cut() -> None:
     """A cluster mostly cut by the view loses its patterns seen whole to a cluster of their own;
     a cluster mostly seen whole keeps its cut patterns, and one with no whole pattern is left."""

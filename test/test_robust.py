@@ -463,26 +463,36 @@ def test_border_share_counts_occurrences_cut_by_the_edge_per_cluster() -> None:
 def test_hopping_patterns_count_against_a_cluster_only_outside_its_steady_patterns_spans() -> None:
     """Cluster 0: a steady pattern over frames 0-9 (10 occurrences) and two hopping ones of 6,
     one in frames 2-7 (vouched for), one in frames 20-25 (not). Cluster 1: the same hoppers'
-    twins, and its steady pattern is seen only in frames 4-7: one hopper has 4 of its 6 within it,
-    the other only in frame 7 of its 6. Cluster 2: hoppers only."""
-    from trap_core.robust import unvouched_hop_share
+    twins, and its steady pattern is seen only in frames 4-7: one hopper has 4 of its 6 within
+    it, the other only frame 7. Cluster 2: hoppers only. Clusters 3 and 4: two unsteady
+    patterns each, neither hopping, whose paths are 40 % and 80 % in hops; in cluster 4 the
+    first has twice the occurrences."""
+    from trap_core.robust import moves_in_hops
     frames = [range(0, 10), range(2, 8), range(20, 26),      # cluster 0
               range(4, 8), range(2, 8), range(7, 13),       # cluster 1
-              range(0, 6)]                                  # cluster 2
+              range(0, 6),                                  # cluster 2
+              range(0, 6), range(0, 6),                     # cluster 3
+              range(0, 12), range(0, 6)]                    # cluster 4
     occ_frame = np.concatenate([np.array(f) for f in frames])
     sizes = np.array([len(f) for f in frames])
-    n = occ_frame.size
-    empty = np.zeros(len(frames))
-    result = MiningResult(empty, empty, empty, occ_frame, np.zeros(n, int), np.zeros((n, 2)), np.zeros((n, 4)),
-                          np.zeros((n, 4)), np.zeros((n, 3), int), np.zeros(len(frames), int),
+    n, k = occ_frame.size, len(frames)
+    result = MiningResult(np.zeros(k), np.zeros(k), np.zeros(k), occ_frame, np.zeros(n, int), np.zeros((n, 2)),
+                          np.zeros((n, 4)), np.zeros((n, 4)), np.zeros((n, 3), int), np.zeros(k, int),
                           np.r_[0, np.cumsum(sizes)], np.arange(n))
-    labels = np.array([0, 0, 0, 1, 1, 1, 2])
-    hopping = np.array([False, True, True, False, True, True, True])
-    share = unvouched_hop_share(result, np.arange(len(frames)), labels, hopping, ~hopping)
-    np.testing.assert_allclose(share, [6 / 22, 6 / 16, 1.0])
-    # with nothing steady, every hopper counts
-    np.testing.assert_allclose(unvouched_hop_share(result, np.arange(len(frames)), labels, hopping,
-                                                   np.zeros(len(frames), bool)), [12 / 22, 12 / 16, 1.0])
+    labels = np.array([0, 0, 0, 1, 1, 1, 2, 3, 3, 4, 4])
+    hopping = np.array([False, True, True, False, True, True, True, False, False, False, False])
+    steady = np.array([True, False, False, True, False, False, False, False, False, False, False])
+    in_hops = np.where(hopping, 0.9, 0.0)
+    in_hops[7:] = [0.4, 0.8, 0.4, 0.8]
+    patterns = np.arange(k)
+    # unvouched hopping occurrences: 6 of 22, 6 of 16, all of cluster 2 (over half: moves in hops);
+    # cluster 3 pools to 0.6 of its paths in hops, cluster 4 to 0.53
+    assert moves_in_hops(result, patterns, labels, hopping, steady, in_hops).tolist() == [
+        False, False, True, True, True]
+    in_hops[9:] = [0.3, 0.8]  # cluster 4 pools to 0.47
+    assert moves_in_hops(result, patterns, labels, hopping, steady, in_hops)[4].item() is False
+    # with nothing steady, every hopper counts: 12 of 22, 12 of 16
+    assert moves_in_hops(result, patterns, labels, hopping, np.zeros(k, bool), in_hops)[:2].tolist() == [True, True]
 
 
 def test_patterns_seen_whole_leave_a_cluster_seen_mostly_cut() -> None:

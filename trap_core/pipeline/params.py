@@ -82,7 +82,8 @@ class TrapParams:
                                   "steady, the median under this share of its speed over tau/2 frames (still between "
                                   "hops) or the mean over its inverse times it (back and forth), with half its path "
                                   "or more in steps of eps/4, moves in hops between look-alikes of the background "
-                                  "(bricks, tiles); a cluster mostly (in occurrences) of such patterns is "
+                                  "(bricks, tiles); a cluster mostly (in occurrences) of such patterns, but where "
+                                  "steady ones of it are seen, or with none steady, half in hops on average, is "
                                   "background; 0 = off")
     one_object: bool = _p(True, "robust: a cluster of the cut whose patterns lie on two objects at once (further "
                                 "apart than half their sizes on average, or in tau frames) is split down the "

@@ -18,7 +18,7 @@ from trap_core.pipeline.track_rules import Clusters, ClusterTracks, tracks_of_cl
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, alone_at_ends, border_contacts,
                               border_share, camera_paths, camera_transforms, cluster_world_speed, hand_to_owners,
-                              held_share, pattern_sizes, rejoin_fragments, shadowed, split_mixed, unvouched_hop_share,
+                              held_share, moves_in_hops, pattern_sizes, rejoin_fragments, shadowed, split_mixed,
                               whole_patterns_apart, without_backdrop, world_speed, world_steps)
 
 
@@ -135,26 +135,28 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     moving = None
     if robust and params.min_speed > 0:
         def moving_clusters(result: MiningResult, paths_summary: ClusterSummary, against: np.ndarray,
-                            steady: np.ndarray) -> np.ndarray:
+                            steady: np.ndarray, in_hops: np.ndarray) -> np.ndarray:
             """Clusters that move relative to the camera as a whole (averaged, noise no longer passes
             for motion), are mostly seen whole (a large region cut by the view "moves" as the camera
-            pans), and have at most ``HOP_SHARE`` of their occurrences on patterns ``against`` them
-            that none of their ``steady`` patterns vouches for (:mod:`trap_core.robust.hops`)."""
+            pans), and do not move in hops: patterns ``against`` them that none of their ``steady``
+            patterns vouches for, or with none steady, their patterns' share of paths ``in_hops``
+            (:mod:`trap_core.robust.hops`)."""
             return ((cluster_world_speed(paths_summary, transforms, params.tau) >= still_below)
                     & (border_share(result, clustered, labels, width, height) <= CUT_SHARE)
-                    & (unvouched_hop_share(result, clustered, labels, against[clustered], steady[clustered]) <= HOP_SHARE))
+                    & ~moves_in_hops(result, clustered, labels, against[clustered], steady[clustered],
+                                     in_hops[clustered]))
 
         def seen_without_backdrop(moving: np.ndarray) -> np.ndarray:
             """Clusters not ``moving`` that mostly hold the backdrop and, placed without it, move
             steadily, where no moving cluster goes (:mod:`trap_core.robust.backdrop`)."""
             free_summary = summarise(labels, free_paths, occurrences, n_frames)
             again = (~moving & (held_share(mined, free, clustered, labels) > HELD_SHARE)
-                     & moving_clusters(free, free_summary, wandering, ~wandering))
+                     & moving_clusters(free, free_summary, wandering, ~wandering, free_in_hops))
             again[again] = shadowed(free_summary, np.flatnonzero(again), np.flatnonzero(moving),
                                     params.eps) <= SHADOWED_SHARE
             return again
 
-        moving = moving_clusters(mined, summary, hopping, ~unsteady)
+        moving = moving_clusters(mined, summary, hopping, ~unsteady, in_hops)
         if free is not mined and moving.size:  # a plain scene: objects may have no face without the backdrop
             # placed without it, the specks of a textured backdrop jitter: a pattern that does not
             # move steadily (slow, in hops or unsteady steps) counts against its cluster
@@ -167,7 +169,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                 labels = labels.copy()
                 labels[apart] = labels.max() + 1 + cluster(clustered[apart], free, free_paths.subset(apart))[1]
                 labels = np.unique(labels, return_inverse=True)[1]
-                moving = moving_clusters(mined, summarise(labels, sub_paths, occurrences, n_frames), hopping, ~unsteady)
+                moving = moving_clusters(mined, summarise(labels, sub_paths, occurrences, n_frames), hopping,
+                                         ~unsteady, in_hops)
                 moving |= seen_without_backdrop(moving)
                 sub_paths = _with_paths(sub_paths, apart, free_paths)
                 summary = summarise(labels, sub_paths, occurrences, n_frames)

@@ -35,7 +35,7 @@ AGREE_PX = 1.0  # a cell (a pattern) agrees with a camera motion that puts it wi
 MAX_ZOOM_STEP = 1.5  # no camera zooms by half between two frames: a fit that does is degenerate
 MATCH_AREA_RATIO = 1.5  # a region matched in the next frame has at most this ratio of areas to its match
 HOP_SHARE = 0.5  # a pattern with this share of its world path in hops, a cluster with more of its occurrences on such
-# patterns, moves in hops (world_steps)
+# patterns, moves in hops (world_steps; which occurrences count: trap_core.robust.hops)
 
 
 def camera_paths(graphs: Sequence[PlaneGraph], observed: ObservedPaths, reach: float) -> ObservedPaths:

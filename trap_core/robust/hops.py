@@ -64,8 +64,8 @@ def moves_in_hops(result: MiningResult, patterns: np.ndarray, labels: np.ndarray
     total = np.maximum(np.bincount(labels, weights=occurrences, minlength=n_clusters), 1)
     unvouched = np.bincount(labels, weights=occurrences * counted, minlength=n_clusters) / total
     pooled = np.bincount(labels, weights=occurrences * in_hops, minlength=n_clusters) / total
-    unsteady = np.bincount(labels, weights=steady, minlength=n_clusters) == 0
-    return (unvouched > HOP_SHARE) | (unsteady & (pooled >= HOP_SHARE))
+    none_steady = np.bincount(labels, weights=steady, minlength=n_clusters) == 0
+    return (unvouched > HOP_SHARE) | (none_steady & (pooled >= HOP_SHARE))
 
 
 def _vouched_share(result: MiningResult, patterns: np.ndarray, labels: np.ndarray, steady: np.ndarray) -> np.ndarray:

@@ -495,6 +495,16 @@ def test_hopping_patterns_count_against_a_cluster_only_outside_its_steady_patter
     assert moves_in_hops(result, patterns, labels, hopping, np.zeros(k, bool), in_hops)[:2].tolist() == [True, True]
 
 
+def test_a_chain_of_hops_at_a_steady_pace_is_no_steady_evidence_unless_its_speed_makes_hops() -> None:
+    """Hops of 10 px: steady steps with 30 % of the path in hops are steady evidence; with 60 %
+    only at 5 px a frame or more (two frames make a hop); unsteady steps never are."""
+    from trap_core.robust import steady_patterns
+    unsteady = np.array([False, False, False, True])
+    in_hops = np.array([0.3, 0.6, 0.6, 0.0])
+    speed = np.array([3.0, 3.0, 5.0, 3.0])
+    assert steady_patterns(unsteady, in_hops, speed, hop=10.0).tolist() == [True, False, True, False]
+
+
 def test_patterns_seen_whole_leave_a_cluster_seen_mostly_cut() -> None:
     """A cluster mostly cut by the view loses its patterns seen whole to a cluster of their own;
     a cluster mostly seen whole keeps its cut patterns, and one with no whole pattern is left."""

@@ -19,7 +19,7 @@ from trap_core.rag import PlaneGraph
 from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, alone_at_ends, border_contacts,
                               border_share, camera_paths, camera_transforms, cluster_world_speed, hand_to_owners,
                               held_share, moves_in_hops, pattern_sizes, rejoin_fragments, shadowed, split_mixed,
-                              whole_patterns_apart, without_backdrop, world_speed, world_steps)
+                              steady_patterns, whole_patterns_apart, without_backdrop, world_speed, world_steps)
 
 
 @dataclass
@@ -75,6 +75,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     if robust and params.min_speed > 0:
         speed, unsteady, in_hops = _pattern_motion(observed, transforms, mined.n_st, params)
         hopping = unsteady & (in_hops >= HOP_SHARE)  # between look-alikes of the background
+        steady = steady_patterns(unsteady, in_hops, speed, hop=params.eps / 4)  # vouch for their clusters
         # a pattern cut short has its speed read over few frames, where jitter passes for motion
         clustered = np.flatnonzero((speed >= still_below) & ~(cut_short & (unsteady | (in_hops >= HOP_SHARE))))
     sub_paths = trajectories(observed, clustered)
@@ -156,7 +157,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                                     params.eps) <= SHADOWED_SHARE
             return again
 
-        moving = moving_clusters(mined, summary, hopping, ~unsteady, in_hops)
+        moving = moving_clusters(mined, summary, hopping, steady, in_hops)
         if free is not mined and moving.size:  # a plain scene: objects may have no face without the backdrop
             # placed without it, the specks of a textured backdrop jitter: a pattern that does not
             # move steadily (slow, in hops or unsteady steps) counts against its cluster
@@ -170,7 +171,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                 labels[apart] = labels.max() + 1 + cluster(clustered[apart], free, free_paths.subset(apart))[1]
                 labels = np.unique(labels, return_inverse=True)[1]
                 moving = moving_clusters(mined, summarise(labels, sub_paths, occurrences, n_frames), hopping,
-                                         ~unsteady, in_hops)
+                                         steady, in_hops)
                 moving |= seen_without_backdrop(moving)
                 sub_paths = _with_paths(sub_paths, apart, free_paths)
                 summary = summarise(labels, sub_paths, occurrences, n_frames)

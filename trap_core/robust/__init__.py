@@ -14,7 +14,7 @@ from trap_core.robust.duplicates import drop_repeated_pieces, drop_shared_stretc
 from trap_core.robust.extent import grow_boxes
 from trap_core.robust.gaps import fill_gaps
 from trap_core.robust.groups import separate_groups
-from trap_core.robust.hops import moves_in_hops
+from trap_core.robust.hops import moves_in_hops, steady_patterns
 from trap_core.robust.mixed import pattern_sizes, split_mixed
 from trap_core.robust.owners import hand_to_owners
 from trap_core.robust.rejoin import (CUT_SHARE, BorderContacts, border_contacts, border_share, rejoin_fragments,
@@ -29,5 +29,5 @@ __all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderCont
            "end_at_exits", "extend_from_twins", "fill_gaps", "grow_boxes", "hand_to_owners", "held_share",
            "join_handovers", "keep_one_size", "lookalike_tracks", "mend_shared_stretches", "merge_duplicates",
            "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments", "separate_groups", "shadowed",
-           "split_mixed", "swap_at_crossings", "whole_patterns_apart", "without_backdrop", "world_speed",
-           "world_steps"]
+           "split_mixed", "steady_patterns", "swap_at_crossings", "whole_patterns_apart", "without_backdrop",
+           "world_speed", "world_steps"]

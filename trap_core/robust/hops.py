@@ -20,6 +20,13 @@ A cluster with no steady pattern at all is judged on its patterns' hops pooled: 
 may be just short of moving in hops (over the cameraman with noise 2, chains of two unsteady
 patterns with 40-43 % and 81-85 % of their paths in hops made 5 extra tracks), but the
 cluster's occurrences, on average, are on paths made half or more in hops.
+
+Steady steps alone do not make a pattern steady evidence (:func:`steady_patterns`): linking with
+motion prediction can chain noise-born structures along a straight line, one hop after another,
+each step about the chain's own speed. Such a pattern (over the cameraman, 51-70 % of its path in
+hops of ``eps``/4 at 3-4.6 px a frame) neither vouches for hoppers nor counts as steady for the
+pooled test, unless it moves so fast (``eps``/8 a frame or more) that its steps, up to two
+frames apart, are hop-sized anyway.
 """
 from __future__ import annotations
 
@@ -29,6 +36,13 @@ from trap_core.mining import MiningResult
 from trap_core.robust.camera import HOP_SHARE
 
 VOUCHED_SHARE = 0.5  # a hopping pattern with this share of its occurrences where a steady one of its cluster is seen
+
+
+def steady_patterns(unsteady: np.ndarray, in_hops: np.ndarray, speed: np.ndarray, hop: float) -> np.ndarray:
+    """Patterns whose motion is evidence of an object: steady steps (not ``unsteady``), and under
+    ``HOP_SHARE`` of the path ``in_hops`` of ``hop`` px unless their ``speed`` (px a frame) is
+    at least half a hop, where steps two frames apart are hops by themselves."""
+    return ~unsteady & ((in_hops < HOP_SHARE) | (speed >= hop / 2))
 
 
 def moves_in_hops(result: MiningResult, patterns: np.ndarray, labels: np.ndarray, hopping: np.ndarray,

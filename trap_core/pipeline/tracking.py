@@ -73,9 +73,10 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         transforms = camera_transforms(camera_paths(graphs, free_observed, params.eps), n_frames)
     still_below = params.min_speed * width  # px per frame
     if robust and params.min_speed > 0:
-        speed, unsteady, in_hops = _pattern_motion(observed, transforms, mined.n_st, params)
+        hop = params.eps / 4  # a world step this long (a texture's spacing) is a hop
+        speed, unsteady, in_hops = _pattern_motion(observed, transforms, mined.n_st, params, hop)
         hopping = unsteady & (in_hops >= HOP_SHARE)  # between look-alikes of the background
-        steady = steady_patterns(unsteady, in_hops, speed, hop=params.eps / 4)  # vouch for their clusters
+        steady = steady_patterns(unsteady, in_hops, speed, hop)  # vouch for their clusters
         # a pattern cut short has its speed read over few frames, where jitter passes for motion
         clustered = np.flatnonzero((speed >= still_below) & ~(cut_short & (unsteady | (in_hops >= HOP_SHARE))))
     sub_paths = trajectories(observed, clustered)
@@ -161,7 +162,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         if free is not mined and moving.size:  # a plain scene: objects may have no face without the backdrop
             # placed without it, the specks of a textured backdrop jitter: a pattern that does not
             # move steadily (slow, in hops or unsteady steps) counts against its cluster
-            free_speed, free_unsteady, free_in_hops = _pattern_motion(free_observed, transforms, mined.n_st, params)
+            free_speed, free_unsteady, free_in_hops = _pattern_motion(free_observed, transforms, mined.n_st,
+                                                                        params, hop)
             wandering = (free_speed < still_below) | free_unsteady | (free_in_hops >= HOP_SHARE)
             free_paths = trajectories(free_observed, clustered)
             again = seen_without_backdrop(moving)
@@ -192,15 +194,15 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
 
 
 def _pattern_motion(observed: ObservedPaths, transforms: np.ndarray, n_patterns: int,
-                    params: TrapParams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                    params: TrapParams, hop: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Per pattern, from its ``observed`` path: its world speed over tau/2 frames (px a frame),
     whether its frame-to-frame steps are unsteady for that speed, and the share of its path made
-    in hops of eps/4 (:func:`trap_core.robust.world_steps`; neither with ``steady_steps`` 0).
+    in hops of ``hop`` px (:func:`trap_core.robust.world_steps`; neither with ``steady_steps`` 0).
     NaN steps (never seen in frames close enough) compare False: steady."""
     speed = world_speed(observed, transforms, n_patterns, max(1, params.tau // 2))
     if params.steady_steps <= 0:
         return speed, np.zeros(n_patterns, dtype=bool), np.zeros(n_patterns)
-    median, mean, in_hops = world_steps(observed, transforms, n_patterns, hop=params.eps / 4)
+    median, mean, in_hops = world_steps(observed, transforms, n_patterns, hop=hop)
     unsteady = (median < params.steady_steps * speed) | (mean > speed / params.steady_steps)
     return speed, unsteady, in_hops
 

@@ -74,7 +74,7 @@ def moves_in_hops(result: MiningResult, patterns: np.ndarray, labels: np.ndarray
     """
     n_clusters = int(labels.max()) + 1 if labels.size else 0
     occurrences = result.st_occurrences[patterns]
-    counted = hopping & (_vouched_share(result, patterns, labels, steady) < VOUCHED_SHARE)
+    counted = hopping & (_vouched_share(result, patterns, labels, steady, occurrences) < VOUCHED_SHARE)
     total = np.maximum(np.bincount(labels, weights=occurrences, minlength=n_clusters), 1)
     unvouched = np.bincount(labels, weights=occurrences * counted, minlength=n_clusters) / total
     pooled = np.bincount(labels, weights=occurrences * in_hops, minlength=n_clusters) / total
@@ -82,10 +82,10 @@ def moves_in_hops(result: MiningResult, patterns: np.ndarray, labels: np.ndarray
     return (unvouched > HOP_SHARE) | (none_steady & (pooled >= HOP_SHARE))
 
 
-def _vouched_share(result: MiningResult, patterns: np.ndarray, labels: np.ndarray, steady: np.ndarray) -> np.ndarray:
-    """(K,) share of each of ``patterns``' occurrences within the frame span of a ``steady``
-    pattern of its cluster (``labels``)."""
-    occurrences = result.st_occurrences[patterns]
+def _vouched_share(result: MiningResult, patterns: np.ndarray, labels: np.ndarray, steady: np.ndarray,
+                   occurrences: np.ndarray) -> np.ndarray:
+    """(K,) share of each of ``patterns``' ``occurrences`` (how many each has) within the frame
+    span of a ``steady`` pattern of its cluster (``labels``)."""
     if not steady.any():
         return np.zeros(patterns.size)
     rows, owner = result.rows_of(patterns)

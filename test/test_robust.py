@@ -912,6 +912,48 @@ def test_a_cluster_on_two_objects_at_once_is_split_down_the_hierarchy() -> None:
     assert len(set(split_mixed(one_cluster, pattern_distances(later), later, np.full(4, 40.0), 25).tolist())) == 1
 
 
+def test_a_pattern_holding_the_backdrop_is_sized_without_it_and_its_pull_on_average() -> None:
+    """Two objects of one face each, both holding a plain backdrop: their boxes are the frame's,
+    so that they would never be apart from anything; placed without it, each is its own size
+    plus the backdrop's pull, and the two are apart on average but not in every frame."""
+    from trap_core.mining import MiningParams, mine
+    from trap_core.robust import pattern_sizes, without_backdrop
+    graphs = []
+    for t in range(30):
+        rgb = np.full((200, 320, 3), 90, np.uint8)
+        for x, y in ((20 + 2 * t, 20), (200 - 2 * t, 140)):
+            rgb[y:y + 30, x:x + 30] = (0, 200, 0)
+            rgb[y + 24:y + 30, x + 10:x + 20] = (200, 0, 0)  # on the green's lower edge: a face with the backdrop
+        graphs.append(frame_graph(rgb, TrapParams(segmentation="colour")))
+    assert all(graph.backdrop.sum() == 1 for graph in graphs)
+    mined = mine(graphs, MiningParams(eps=40.0, tau=5, freq_st_min=10, max_faces=3, linking="assignment"))
+    patterns = np.arange(mined.n_st)
+    free = without_backdrop(mined, graphs)
+    in_every_frame, on_average = pattern_sizes(mined, patterns), pattern_sizes(mined, patterns, free)
+    np.testing.assert_allclose(in_every_frame, np.hypot(320, 200))
+    pull = [np.linalg.norm(mined.occ_position[mined.st(p)] - free.occ_position[mined.st(p)], axis=1).mean()
+            for p in patterns]
+    np.testing.assert_allclose(on_average, np.hypot(30, 30) + 2 * np.array(pull))
+    assert mined.n_st == 2 and np.all(on_average < 150)
+
+
+def test_a_cluster_is_split_on_mean_distances_judged_by_mean_sizes() -> None:
+    """Patterns of two objects whose sizes in every frame are the frame's (they hold the backdrop)
+    are never apart frame by frame; on average they are, judged by their sizes without it."""
+    from scipy.cluster.hierarchy import linkage
+    from trap_core.clustering import Hierarchy, pattern_distances
+    from trap_core.robust import split_mixed
+    frames = np.arange(50.0)[:, None]
+    walk = np.hstack([3 * frames, frames])
+    paths = Trajectories.pack([0, 0, 0, 0], [walk, walk + [12, 0], walk + [0, 100], walk + [12, 100]])
+    distances = pattern_distances(paths)
+    one_cluster = Hierarchy(4, linkage(distances, method="average"), 1, np.zeros(4, dtype=np.int64))
+    frame_sized = np.full(4, 377.0)
+    assert len(set(split_mixed(one_cluster, distances, paths, frame_sized, 25).tolist())) == 1
+    labels = split_mixed(one_cluster, distances, paths, frame_sized, 25, mean_sizes=np.full(4, 80.0))
+    assert labels[0] == labels[1] and labels[2] == labels[3] and labels[0] != labels[2]
+
+
 def _stacked_objects(rows: tuple[int, int], split: int = 60) -> tuple[list, object, np.ndarray]:
     """30 frames of two objects moving right, at the heights ``rows``, over a grey background above
     ``split`` and a blue one below; their graphs, mining and which patterns are the lower one's."""

@@ -98,7 +98,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         hierarchy = cluster_patterns(distances, len(paths), params.linkage, params.ignore_top)
         labels = hierarchy.labels
         if robust and params.one_object:
-            labels = split_mixed(hierarchy, distances, paths, pattern_sizes(result, patterns), params.tau)
+            labels = split_mixed(hierarchy, distances, paths, pattern_sizes(result, patterns), params.tau,
+                                 pattern_sizes(result, patterns, free if result is mined else None))
         return hierarchy, labels
 
     def cluster(patterns: np.ndarray, result: MiningResult, paths: Trajectories) -> tuple[Hierarchy, np.ndarray]:

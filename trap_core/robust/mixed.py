@@ -20,18 +20,29 @@ from trap_core.clustering import Hierarchy, Trajectories
 from trap_core.mining import MiningResult
 
 
-def pattern_sizes(result: MiningResult, patterns: np.ndarray) -> np.ndarray:
-    """Mean diagonal of the occurrence boxes of each spatio-temporal pattern in ``patterns``
-    (increasing)."""
+def pattern_sizes(result: MiningResult, patterns: np.ndarray, placed: MiningResult | None = None) -> np.ndarray:
+    """Mean size of the occurrences of each spatio-temporal pattern in ``patterns`` (increasing):
+    the diagonal of the occurrence's box.
+
+    With ``placed``, the same occurrences placed and boxed without the backdrop
+    (:func:`trap_core.robust.without_backdrop`): the backdrop's box is the frame's, which would
+    make every pattern that holds it as large as the view and never apart from anything. The
+    box is then the one without the backdrop, and twice the distance from the occurrence's
+    position to its position without the backdrop is added: positions (the paths compared)
+    keep the backdrop's pull toward the middle of the view, and two patterns of one object are
+    then at most half the sum of their sizes apart.
+    """
     rows, owner = result.rows_of(patterns)
-    box = result.occ_box[rows].astype(float)
-    diagonal = np.hypot(box[:, 2] - box[:, 0] + 1, box[:, 3] - box[:, 1] + 1)
+    box = (result if placed is None else placed).occ_box[rows].astype(float)
+    size = np.hypot(box[:, 2] - box[:, 0] + 1, box[:, 3] - box[:, 1] + 1)
+    if placed is not None:
+        size += 2 * np.linalg.norm(result.occ_position[rows] - placed.occ_position[rows], axis=1)
     lengths = np.bincount(owner, minlength=patterns.size)
-    return np.bincount(owner, weights=diagonal, minlength=patterns.size) / np.maximum(lengths, 1)
+    return np.bincount(owner, weights=size, minlength=patterns.size) / np.maximum(lengths, 1)
 
 
 def split_mixed(hierarchy: Hierarchy, distances: np.ndarray, paths: Trajectories, sizes: np.ndarray,
-                min_apart: int) -> np.ndarray:
+                min_apart: int, mean_sizes: np.ndarray | None = None) -> np.ndarray:
     """Cluster labels (0..C'-1) of the cut with every cluster that mixes objects split.
 
     Parameters
@@ -44,10 +55,17 @@ def split_mixed(hierarchy: Hierarchy, distances: np.ndarray, paths: Trajectories
     paths : Trajectories
         The clustered patterns' trajectories (their spans give ``d_ov``).
     sizes : (n,) array
-        Size of each pattern (:func:`pattern_sizes`).
+        Size of each pattern in every frame (:func:`pattern_sizes`).
     min_apart : int
-        Frames in which two patterns further apart than half the sum of their sizes are on two
-        objects whatever their mean distance (``tau``).
+        Frames in which two patterns further apart than half the sum of their ``sizes`` are on
+        two objects whatever their mean distance (``tau``).
+    mean_sizes : (n,) array, optional
+        Size of each pattern on average, against which mean distances are judged
+        (:func:`pattern_sizes` with the occurrences placed without the backdrop); ``sizes`` by
+        default. A pattern that holds the backdrop has the frame for its box in every frame,
+        yet on average lies within its box without the backdrop and the backdrop's pull; frame
+        by frame its position jumps with the backdrop's barycentre (regions merging into it or
+        leaving it), so only its mean distance can tell it from another object's.
 
     Returns
     -------
@@ -61,7 +79,8 @@ def split_mixed(hierarchy: Hierarchy, distances: np.ndarray, paths: Trajectories
     spans = paths.end - paths.start + 1
     shared = common / (spans[:, None] + spans[None, :] - common)
     mean_distance = squareform(distances) / (2 - shared)
-    far = (common >= 2) & (mean_distance > (sizes[:, None] + sizes[None, :]) / 2)
+    mean_sizes = sizes if mean_sizes is None else mean_sizes
+    far = (common >= 2) & (mean_distance > (mean_sizes[:, None] + mean_sizes[None, :]) / 2)
     children = hierarchy.linkage[:, :2].astype(np.int64)
     below_cut = n + (n - hierarchy.cut_level)  # nodes formed by the merges made before the cut
     labels = np.empty(n, dtype=np.int64)

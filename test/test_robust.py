@@ -1709,11 +1709,12 @@ def test_a_piece_of_a_track_on_another_tracks_object_is_dropped() -> None:
         list(range(40))
 
 
-def test_a_track_whose_pieces_change_size_keeps_the_size_it_holds_longest() -> None:
+def test_a_track_whose_pieces_change_size_keeps_the_sizes_it_holds_long_enough() -> None:
     """Three tracks of three pieces each (frames 0-59, 110-209, 260-329). A chain of background
-    regions of 40x30, 200x120 and 80x60 px holds no size for 150 frames: dropped. A track at
-    40x30, then 200x120, then 44x33 keeps its two small pieces (130 frames). One that grows from
-    40x30 to 48x36 to 56x42 (an object coming closer) is kept whole. Ids are renumbered."""
+    regions of 40x30, 200x120 and 80x60 px holds no size for 120 frames: dropped. A track at
+    40x30, then 200x120, then 44x33 keeps its two small pieces (130 frames), and all three where
+    100 frames make a track. One that grows from 40x30 to 48x36 to 56x42 (an object coming
+    closer) is kept whole. Ids are renumbered."""
     from trap_core.robust import keep_one_size
     frames = np.r_[0:60, 110:210, 260:330]
     piece = np.repeat([0, 1, 2], [60, 100, 70])
@@ -1730,6 +1731,8 @@ def test_a_track_whose_pieces_change_size_keeps_the_size_it_holds_longest() -> N
     assert out[0].frames.tolist() == np.r_[0:60, 260:330].tolist()
     assert len(out[1]) == 230
     assert len(keep_one_size([mixed], 25, 150)) == 0
+    # each size held long enough for a track: an object, whole, then only a part of it in view
+    assert len(keep_one_size([mixed], 25, 100)[0]) == 230
 
 
 def test_boxes_that_slide_onto_something_else_and_back_are_dropped_and_a_smooth_turn_is_kept() -> None:

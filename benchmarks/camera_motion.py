@@ -4,9 +4,11 @@
 For each video of the chosen ``quality.py`` sets that only pans (no turn, no zoom: the
 synthetic camera path is then the truth), prints the median and 90th percentile over 12-frame
 windows of the error of the estimated pan, in px per frame, read from the patterns' positions
-as they are and as the tracker reads it (:func:`trap_core.robust.camera_paths`: patterns
-without the backdrop, and the regions matched from frame to frame), and the share of the frame
-its largest region covers. 0.0012 image widths per frame (0.77 px at 640) is the
+as they are, as the tracker reads it without the images (:func:`trap_core.robust.camera_paths`:
+patterns without the backdrop, and the regions matched from frame to frame; ``image_motion``
+false) and with them (the steps read from the images, :mod:`trap_core.robust.image_steps`,
+where there is one), the share of frames with a step read from the images, and the share of
+the frame its largest region covers. 0.0012 image widths per frame (0.77 px at 640) is the
 speed that makes background. Graphs come from ``quality.py``'s cache.
 Run: ``.venv/bin/python benchmarks/camera_motion.py [--sets photos,analogues]``.
 """
@@ -41,8 +43,9 @@ def main() -> None:
     parser.add_argument("--sets", default="photos,analogues")
     parser.add_argument("--cache", type=Path, default=Path.home() / ".cache/trap_ros/quality")
     args = parser.parse_args()
-    print("| set | video | largest region | patterns as they are, median / p90 | tracker, median / p90 |")
-    print("|---|---|---|---|---|")
+    print("| set | video | largest region | patterns as they are, median / p90 | without the images, median / p90 "
+          "| with them, median / p90 | frames read from the images |")
+    print("|---|---|---|---|---|---|---|")
     for set_name in args.sets.split(","):
         for label, scene, segmentation in quality.SETS[set_name]:
             if scene.get("rotation") or scene.get("zoom"):
@@ -59,10 +62,12 @@ def main() -> None:
             cells = []
             with_backdrop = observed_paths(mined)
             read = camera_paths(graphs, observed_paths(without_backdrop(mined, graphs)), params.eps)
-            for paths in (with_backdrop, read):
-                errors = _errors(camera_transforms(paths, len(graphs)), pan)
+            steps = np.stack([graph.camera_step for graph in graphs])
+            for paths, image_steps in ((with_backdrop, None), (read, None), (read, steps)):
+                errors = _errors(camera_transforms(paths, len(graphs), image_steps), pan)
                 cells.append(f"{np.median(errors):.2f} / {np.percentile(errors, 90):.2f}")
-            print(f"| {set_name} | {label} | {largest:.2f} | {cells[0]} | {cells[1]} |", flush=True)
+            from_images = np.isfinite(steps[1:]).all(axis=(1, 2)).mean()
+            print(f"| {set_name} | {label} | {largest:.2f} | {' | '.join(cells)} | {from_images:.2f} |", flush=True)
 
 
 if __name__ == "__main__":

@@ -36,8 +36,8 @@ def _stage_rates(bag: Path, segmentation: str) -> dict[str, float]:
     decode = time.perf_counter() - start
     frame_graph(frames[0], params)  # compiled kernels loaded
     start = time.perf_counter()
-    for rgb in frames[:100]:
-        frame_graph(rgb, params)
+    for previous, rgb in zip(frames[:100], frames[1:101]):  # with the camera's step, as graphs_of makes them
+        frame_graph(rgb, params, previous)
     one_thread = (time.perf_counter() - start) / 100
     start = time.perf_counter()
     graphs = list(graphs_of(frames, params))

@@ -37,6 +37,7 @@ from trap_core.evaluation import boxes_by_frame, match_objects, mot_measures
 from trap_core.clustering import Track
 from trap_core.outputs import Thumbnails, contact_sheet, track_timeline
 from trap_core.pipeline import GRAPH_STAGE, TrapParams, synthetic_graphs, track
+from trap_core.rag.serialize import MAGIC as GRAPH_MAGIC
 from trap_core.synthetic import PRESETS, SceneConfig, render
 
 ANALOGUES = [(f"{preset} seed {seed}", dict(seed=seed, **PRESETS[preset]), "colour")
@@ -281,9 +282,10 @@ def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None 
     used = [k for k in GRAPH_STAGE if k != "threads" and (segmentation == "felzenszwalb" or k not in FELZENSZWALB_ONLY)]
     graph_overrides = {k: v for k, v in (overrides or {}).items() if k in used}
     params = TrapParams.from_mapping({"segmentation": segmentation, **graph_overrides})
-    # Every graph parameter the segmentation uses is in the key, defaults too: graphs cached
-    # under other defaults are not taken for these.
-    key = "_".join(f"{k}{v}" for k, v in sorted(scene.items())) + f"_{segmentation}"
+    # Every graph parameter the segmentation uses is in the key, defaults too, and the graphs'
+    # format: graphs cached under other defaults, or lacking what the format now holds, are not
+    # taken for these.
+    key = f"{GRAPH_MAGIC.decode()}_" + "_".join(f"{k}{v}" for k, v in sorted(scene.items())) + f"_{segmentation}"
     key += "".join(f"_{k}{getattr(params, k)}" for k in used if k != "segmentation")
     if len(key) > MAX_KEY:  # a file name is at most 255 bytes: long keys keep a readable head and a digest
         key = f"{key[:MAX_KEY - 17]}_{hashlib.sha256(key.encode()).hexdigest()[:16]}"

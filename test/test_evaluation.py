@@ -66,7 +66,8 @@ def test_evaluate_writes_a_report(tmp_path: Path, venv_bin: Path) -> None:
     data = json.loads((tmp_path / "report" / "report.json").read_text())
     methods = data[0]["methods"]
     assert list(methods) == ["paper", "+ one path per object", "+ steps within reach", "+ label memory",
-                             "+ camera motion", "+ steady steps", "+ one object per cluster", "+ rejoin fragments",
+                             "+ camera motion", "+ camera motion from the images", "+ steady steps",
+                             "+ one object per cluster", "+ rejoin fragments",
                              "+ core boxes",
                              "+ background out of boxes", "+ grown boxes",
                              "+ filled gaps", "+ one track per object", "+ own frames, twin clusters",

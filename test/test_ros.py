@@ -136,8 +136,9 @@ def test_graph_message_is_lossless(ros_bag: Path) -> None:
 
     from trap_ros.messages import graph_message
     with open_image_stream(ros_bag) as stream:
-        rgb = next(iter(stream)).rgb
-    graph = frame_graph(rgb, TrapParams(segmentation="colour"))
+        first, second = (frame.rgb for frame, _ in zip(stream, range(2)))
+    graph = frame_graph(second, TrapParams(segmentation="colour"), first)  # with the camera's step from the first
+    assert graph.has_camera_step
     from rclpy.serialization import deserialize_message, serialize_message
     wire = deserialize_message(serialize_message(graph_message(graph, Header(frame_id="c"))), CompressedImage)
     back = message_graph(wire)
@@ -200,6 +201,7 @@ def test_process_bag_writes_every_output_and_matches_the_core_pipeline(ros_bag: 
     summary = json.loads((out / "summary.json").read_text())
     assert summary["frames"] == 60 and not summary["interrupted"] and summary["counts"]["tracks"] >= 1
     assert summary["counts"]["chunks"] == chunks
+    assert summary["counts"]["camera_steps_from_images"] == 59  # a panning synthetic scene: every step read
     assert summary["parameters"]["segmentation"] == "colour"  # the segmentation node's, not a default
     assert (out / "tracks.png").stat().st_size > 1000 and (out / "timeline.png").stat().st_size > 1000
     from rosbags.highlevel import AnyReader
@@ -211,7 +213,7 @@ def test_process_bag_writes_every_output_and_matches_the_core_pipeline(ros_bag: 
         message = reader.deserialize(raw, connection.msgtype)
         assert message.header.frame_id == "camera"
     core = run_bag(ros_bag, tmp_path / "core", TrapParams(segmentation="colour", **overrides))
-    assert core.frames == 60
+    assert core.frames == 60 and core.camera_steps_read == 59
     np.testing.assert_allclose(read_mot(out / "tracks.txt"), read_mot(tmp_path / "core" / "tracks.txt"))
 
 

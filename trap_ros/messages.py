@@ -1,7 +1,7 @@
 """Conversions between ROS messages and trap_core data.
 
 Plane graphs travel as ``sensor_msgs/CompressedImage`` whose ``format`` is
-``trap_ros/plane_graph;v2`` and whose ``data`` is :func:`trap_core.rag.graph_to_bytes` (a
+``trap_ros/plane_graph;v3`` and whose ``data`` is :func:`trap_core.rag.graph_to_bytes` (a
 standard type with a header and a byte payload; lossless). Tracks travel as
 ``vision_msgs/Detection2DArray``: on ``detections`` one message per frame (every box of that
 frame, ``Detection2D.id`` = track id), on ``tracks`` one message per track (its box in every
@@ -21,7 +21,7 @@ from trap_core.clustering import Track
 from trap_core.outputs import track_colour
 from trap_core.rag import PlaneGraph, graph_from_bytes, graph_to_bytes
 
-GRAPH_FORMAT = "trap_ros/plane_graph;v2"
+GRAPH_FORMAT = "trap_ros/plane_graph;v3"
 CLASS_ID = "object"
 
 

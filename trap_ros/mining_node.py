@@ -36,6 +36,7 @@ class MiningNode(Node):
         self.params = trap_parameters(self, MINING_STAGE)
         self.tracker = ChunkedTracker(self.params)
         self.regions = 0  # summed over the frames received
+        self.camera_steps_read = 0  # frames received whose camera step was read from the images
         self.headers: list[Header] = []
         self.expected: int | None = None
         self.on_done = on_done
@@ -64,6 +65,7 @@ class MiningNode(Node):
                 return
             self.headers.append(message.header)
             self.regions += graph.n_nodes
+            self.camera_steps_read += graph.has_camera_step
             try:
                 self.tracker.add(graph)
                 self._publish_final()

@@ -146,7 +146,7 @@ def _main() -> int:
         spinners.stop()  # the nodes are destroyed below: not while a callback may still run
         seconds = {"total": time.perf_counter() - start, **(mining.result.seconds if mining.result else {})}
         run = BagRun(reader.stream.topic, mining.received, mining.regions / max(mining.received, 1), mining.result,
-                     seconds, {}, interrupted)
+                     seconds, {}, interrupted, mining.camera_steps_read)
         # Each node holds the parameters of its own stages; the summary reports the run's.
         graph_stage = {name: getattr(segmentation.params, name) for name in GRAPH_STAGE}
         params = dataclasses.replace(mining.params, **graph_stage)

@@ -12,6 +12,7 @@ import time
 from collections import deque
 from concurrent.futures import Future, ThreadPoolExecutor
 
+import numpy as np
 import rclpy
 from rclpy.node import Node
 from sensor_msgs.msg import CompressedImage, Image
@@ -43,6 +44,7 @@ class SegmentationNode(Node):
         self.published = 0
         self.errors = 0
         self.fitted = False  # whether the first frame set the segmentation up (first_frame_setup)
+        self.previous: np.ndarray | None = None  # the last frame submitted: the camera's step is read from it
         self.error: str | None = None  # why no frame can be segmented (first_frame_setup refused the first)
         self.create_subscription(Image, "image", self._on_image, PIPELINE)
         self.create_timer(0.02, self.publish_done)
@@ -67,7 +69,8 @@ class SegmentationNode(Node):
                     return
                 for note in notes:
                     self.get_logger().warning(note)
-            self.pending.append((self.pool.submit(frame_graph, rgb, self.params), message.header))
+            self.pending.append((self.pool.submit(frame_graph, rgb, self.params, self.previous), message.header))
+            self.previous = rgb
             self._publish_ready(block=len(self.pending) > 2 * self.params.threads)
 
     def _downstream_ready(self, block: bool) -> bool:

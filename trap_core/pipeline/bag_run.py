@@ -29,6 +29,7 @@ class BagRun:
     seconds: dict[str, float]
     outputs: dict[str, str]
     interrupted: bool = False
+    camera_steps_read: int = 0  # frames whose camera step from the frame before was read from the images
 
 
 def thumbnailed_frames(stream, thumbnails: Thumbnails, meter: Progress) -> Iterator[np.ndarray]:
@@ -48,7 +49,7 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    regions = 0
+    regions = steps_read = 0
     interrupted = False
     bad_frame: BagError | None = None
     fitted: list[TrapParams] = []  # the segmentation's parameters, fitted to the first frame
@@ -65,6 +66,7 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
             for graph in graphs_of(thumbnailed_frames(stream, thumbnails, meter), params, tell):
                 tracker.add(graph)
                 regions += graph.n_nodes
+                steps_read += graph.has_camera_step
         except KeyboardInterrupt:
             interrupted = True
         except BagError as error:
@@ -77,7 +79,7 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
     tracking = tracker.finish() if frames >= 2 else None
     seconds = tracking.seconds if tracking else {}
     seconds["read_segment_graph"] = elapsed - tracking.seconds_while_reading() if tracking else elapsed
-    run = BagRun(chosen_topic, frames, regions / max(frames, 1), tracking, seconds, {}, interrupted)
+    run = BagRun(chosen_topic, frames, regions / max(frames, 1), tracking, seconds, {}, interrupted, steps_read)
     write_outputs(run, bag, out, params, thumbnails.images, thumbnails.scale)
     if interrupted:
         raise KeyboardInterrupt
@@ -105,6 +107,7 @@ def write_outputs(run: BagRun, bag: str | Path, out: Path, params: TrapParams,
         "parameters": params.as_dict(),
         "counts": {
             "regions_per_frame": run.regions_per_frame,
+            "camera_steps_from_images": run.camera_steps_read,  # of frames - 1; the others' from the patterns
             "chunks": len(chunks),
             "plane_patterns": sum(c.plane_patterns for c in chunks),  # per chunk, summed
             "spatio_temporal_patterns": sum(c.spatio_temporal_patterns for c in chunks),

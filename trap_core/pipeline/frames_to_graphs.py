@@ -16,6 +16,7 @@ import numpy as np
 
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, build_plane_graph
+from trap_core.robust.image_steps import image_step
 from trap_core.segmentation import SegmentationError, colour_components, felzenszwalb
 from trap_core.synthetic import SceneConfig, render
 
@@ -24,8 +25,10 @@ MAX_K = 1e4  # fitting never raises Felzenszwalb's k beyond this: every colour s
 COLOUR_EXCESS = 20  # exact-colour regions are refused on a first frame with more than this times max_regions
 
 
-def frame_graph(rgb: np.ndarray, params: TrapParams) -> PlaneGraph:
-    """Regions (segmentation or exact colours) and their plane graph for one frame.
+def frame_graph(rgb: np.ndarray, params: TrapParams, previous: np.ndarray | None = None) -> PlaneGraph:
+    """Regions (segmentation or exact colours) and their plane graph for one frame, with the
+    camera's step from the ``previous`` frame read from the two images where it is given
+    (:func:`trap_core.robust.image_steps.image_step`; the robust method's camera motion).
 
     A frame is segmented with its longer side scaled to ``params.max_side`` (nearest pixels:
     averaging would blend the colours along every edge into strips of regions of their own, and
@@ -39,7 +42,9 @@ def frame_graph(rgb: np.ndarray, params: TrapParams) -> PlaneGraph:
     small = _working_size(rgb, params)
     labels, n = _regions(small, params)
     graph = build_plane_graph(labels, n, small, params.colour_bins, params.contact_tolerance)
-    return graph if small is rgb else _in_frame_pixels(graph, width / small.shape[1], height / small.shape[0])
+    if small is not rgb:
+        graph = _in_frame_pixels(graph, width / small.shape[1], height / small.shape[0])
+    return graph if previous is None else dataclasses.replace(graph, camera_step=image_step(previous, rgb))
 
 
 def fitted_to_regions(rgb: np.ndarray, params: TrapParams) -> TrapParams:
@@ -166,8 +171,9 @@ def _last_pixel(last: np.ndarray, scale: float) -> np.ndarray:
 def graphs_of(frames: Iterable[np.ndarray], params: TrapParams,
               told: Callable[[TrapParams, list[str]], None] | None = None) -> Iterator[PlaneGraph]:
     """Plane graph of each frame, in order, with the parameters :func:`first_frame_setup` gives
-    on the first frame; where it has lines for the user, they and those parameters are passed
-    to ``told`` (the run prints them and reports the ``k`` it used). If ``frames`` fails (a bad
+    on the first frame and the camera's step from the frame before (:func:`frame_graph`); where
+    it has lines for the user, they and those parameters are passed to ``told`` (the run prints
+    them and reports the ``k`` it used). If ``frames`` fails (a bad
     frame in a bag), the graphs of the frames before it are still given, then the error is
     raised."""
     failure: Exception | None = None
@@ -175,6 +181,7 @@ def graphs_of(frames: Iterable[np.ndarray], params: TrapParams,
         pending: deque[Future] = deque()
         source = iter(frames)
         first = True
+        previous = None
         while True:
             try:
                 rgb = next(source)
@@ -187,7 +194,8 @@ def graphs_of(frames: Iterable[np.ndarray], params: TrapParams,
                 first, (params, notes) = False, first_frame_setup(rgb, params)
                 if told is not None and notes:
                     told(params, notes)
-            pending.append(pool.submit(frame_graph, rgb, params))
+            pending.append(pool.submit(frame_graph, rgb, params, previous))
+            previous = rgb
             if len(pending) >= 2 * params.threads:
                 yield pending.popleft().result()
         while pending:

@@ -78,6 +78,10 @@ class TrapParams:
                                   "frames, below which patterns (and, over tau frames, clusters) are background "
                                   "(0.0012 = 0.77 px/frame at 640 px; per frame, as the barycentres' jitter it "
                                   "stands above, at any frame rate); 0 = off")
+    image_motion: bool = _p(True, "robust: the camera's motion from one frame to the next is read from the images "
+                                  "(optical flow at grid points, the motion most of the frame agrees on), where they "
+                                  "show enough of the scene, and from the patterns and regions elsewhere; false: "
+                                  "from the patterns and regions only")
     steady_steps: float = _p(0.5, "robust: a pattern whose steps from one frame to the next (in the world) are not "
                                   "steady, the median under this share of its speed over tau/2 frames (still between "
                                   "hops) or the mean over its inverse times it (back and forth), with half its path "

@@ -1,7 +1,7 @@
 """One frame's region adjacency graph as a plane graph (TRAP_SPEC section 2)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
@@ -11,6 +11,12 @@ from trap_core.rag._kernels import (drop_short_contacts, region_stats, rotation_
 from trap_core.rag.errors import GraphError
 
 BACKDROP_SHARE = 0.5  # a region over this share of the frame is the backdrop: only one can be
+
+
+def unknown_step() -> np.ndarray:
+    """(2, 3) of NaN: the camera's step into a frame that was not read from the images (a
+    video's first frame, a frame with too little texture, a graph made from labels alone)."""
+    return np.full((2, 3), np.nan)
 
 
 @dataclass(frozen=True)
@@ -38,6 +44,13 @@ class PlaneGraph:
     face_of: np.ndarray       # (2m,) int32: face on the left... of each half-edge's traversal
     face_half_edges: np.ndarray  # half-edges of all faces, in traversal order
     face_offsets: np.ndarray  # (F+1,) CSR offsets into face_half_edges
+    camera_step: np.ndarray = field(default_factory=unknown_step)  # (2, 3) float64: the camera's motion from the
+    # previous frame, a similarity taking its pixel positions to this frame's (trap_core.robust.image_steps)
+
+    @property
+    def has_camera_step(self) -> bool:
+        """Whether :attr:`camera_step` was read from the images."""
+        return bool(np.isfinite(self.camera_step).all())
 
     @property
     def outside(self) -> int:

@@ -1,8 +1,9 @@
 """Lossless byte encoding of a :class:`PlaneGraph`, for passing graphs between ROS nodes.
 
-Layout (little-endian): the 8-byte magic ``TRAPPG02``, then the node count and the sizes of
-the half-edge and face arrays as three uint64, then the arrays in field order, each as raw
-float32 or int32 (the graph's own types). ``graph_from_bytes(graph_to_bytes(g))`` equals ``g`` field for field.
+Layout (little-endian): the 8-byte magic ``TRAPPG03``, then the node count and the sizes of
+the half-edge and face arrays as three uint64, the camera's step into the frame as six float64
+(NaN where it was not read), then the arrays in field order, each as raw float32 or int32 (the
+graph's own types). ``graph_from_bytes(graph_to_bytes(g))`` equals ``g`` field for field.
 """
 from __future__ import annotations
 
@@ -11,7 +12,8 @@ import numpy as np
 from trap_core.rag.errors import GraphError
 from trap_core.rag.plane_graph import PlaneGraph
 
-MAGIC = b"TRAPPG02"
+MAGIC = b"TRAPPG03"
+HEADER = 8 + 3 * 8 + 6 * 8  # magic, sizes, camera step
 # (field, dtype, shape given n nodes / h half-edges / f faces)
 _FIELDS = (
     ("centroid", "<f4", lambda n, h, f: (n, 2)), ("area", "<i4", lambda n, h, f: (n,)),
@@ -26,7 +28,7 @@ _FIELDS = (
 def graph_to_bytes(graph: PlaneGraph) -> bytes:
     """Encode ``graph`` (see the module docstring for the layout)."""
     sizes = np.array([graph.n_nodes, graph.he_twin.size, graph.n_faces], dtype="<u8")
-    parts = [MAGIC, sizes.tobytes()]
+    parts = [MAGIC, sizes.tobytes(), np.ascontiguousarray(graph.camera_step, dtype="<f8").tobytes()]
     parts += [np.ascontiguousarray(getattr(graph, name), dtype=dtype).tobytes() for name, dtype, _ in _FIELDS]
     return b"".join(parts)
 
@@ -35,10 +37,11 @@ def graph_from_bytes(data: bytes | bytearray | memoryview | np.ndarray) -> Plane
     """Decode what :func:`graph_to_bytes` wrote; a malformed buffer is a :class:`GraphError`."""
     buffer = memoryview(np.frombuffer(data, dtype=np.uint8)).cast("B") if isinstance(data, np.ndarray) \
         else memoryview(data).cast("B")
-    if bytes(buffer[:8]) != MAGIC or len(buffer) < 32:
+    if bytes(buffer[:8]) != MAGIC or len(buffer) < HEADER:
         raise GraphError("not a trap_ros plane graph (bad magic or too short)")
     n, h, f = (int(v) for v in np.frombuffer(buffer[8:32], dtype="<u8"))
-    offset = 32
+    camera_step = np.frombuffer(buffer[32:HEADER], dtype="<f8").reshape(2, 3).astype(np.float64)
+    offset = HEADER
     arrays = {}
     for name, dtype, shape_of in _FIELDS:
         shape = shape_of(n, h, f)
@@ -49,4 +52,4 @@ def graph_from_bytes(data: bytes | bytearray | memoryview | np.ndarray) -> Plane
         offset += size
     if offset != len(buffer):
         raise GraphError(f"plane graph buffer has {len(buffer) - offset} trailing bytes")
-    return PlaneGraph(n_nodes=n, **arrays)
+    return PlaneGraph(n_nodes=n, **arrays, camera_step=camera_step)

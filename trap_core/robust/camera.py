@@ -1,10 +1,11 @@
-"""Camera motion from the patterns themselves, and each pattern's motion relative to the scene.
+"""Camera motion from the images or the patterns, and each pattern's motion relative to the scene.
 
 Beyond the paper (TRAP_SPEC section 10, "object versus background"): the background moves with
-the camera, so most of the frame moves together. Per pair of consecutive frames, a similarity
-transform (rotation, scale, translation) is fitted to the displacements of the patterns seen in
-both frames. Patterns are not votes: an object with many structures (windows, wheels) over a
-plain background holds most of them, and a fit robust to half of the patterns moving on their
+the camera, so most of the frame moves together. Per pair of consecutive frames, the step is
+the one read from the images where the graph stage read one (:mod:`trap_core.robust.image_steps`),
+and otherwise a similarity transform (rotation, scale, translation) fitted to the displacements
+of the patterns seen in both frames. Patterns are not votes: an object with many structures
+(windows, wheels) over a plain background holds most of them, and a fit robust to half of the patterns moving on their
 own then follows the object. So each cell of a ``GRID`` x ``GRID`` grid over the frame votes
 once (the median displacement of its patterns); the transform most cells agree on (RANSAC,
 within ``AGREE_PX``) is refined by least median of squares on the patterns it fits. Chaining
@@ -95,8 +96,12 @@ def _inner_regions(graph: PlaneGraph, backdrop: np.ndarray) -> np.ndarray:
     return np.flatnonzero(~cut & ~backdrop)
 
 
-def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:
-    """(n_frames, 3, 3): ``M[t]`` maps world (frame 0) coordinates to frame t coordinates."""
+def camera_transforms(paths: ObservedPaths, n_frames: int, image_steps: np.ndarray | None = None) -> np.ndarray:
+    """(n_frames, 3, 3): ``M[t]`` maps world (frame 0) coordinates to frame t coordinates.
+
+    Each step from a frame to the next is ``image_steps[t + 1]`` ((n_frames, 2, 3): the step into
+    each frame read from the images, :mod:`trap_core.robust.image_steps`) where it was read, and
+    otherwise fitted to the ``paths`` seen in both frames."""
     step = (paths.pattern[1:] == paths.pattern[:-1]) & (paths.frame[1:] == paths.frame[:-1] + 1)
     src_rows = np.flatnonzero(step)
     when = paths.frame[src_rows]
@@ -105,22 +110,32 @@ def camera_transforms(paths: ObservedPaths, n_frames: int) -> np.ndarray:
     bounds = np.searchsorted(when, np.arange(n_frames + 1))
     transforms = np.tile(np.eye(3), (n_frames, 1, 1))
     extent = paths.position.max(axis=0) + 1 if len(paths.frame) else np.ones(2)
+    read = np.zeros(n_frames, dtype=bool) if image_steps is None else np.isfinite(image_steps).all(axis=(1, 2))
     for t in range(n_frames - 1):
-        rows = src_rows[bounds[t]:bounds[t + 1]]
         step_matrix = np.eye(3)
-        src, dst = paths.position[rows].astype(np.float32), paths.position[rows + 1].astype(np.float32)
-        fitted = _step(src, dst, extent) if rows.size >= 3 else None
-        if fitted is not None:
-            step_matrix[:2] = fitted
+        rows = src_rows[bounds[t]:bounds[t + 1]]
+        if read[t + 1]:
+            step_matrix[:2] = image_steps[t + 1]
         elif rows.size:
-            step_matrix[:2, 2] = np.median(dst - src, axis=0)
+            step_matrix[:2] = _paths_step(paths.position[rows], paths.position[rows + 1], extent)
         transforms[t + 1] = step_matrix @ transforms[t]
     return transforms
 
 
-def _step(src: np.ndarray, dst: np.ndarray, extent: np.ndarray) -> np.ndarray | None:
-    """(2, 3) similarity taking ``src`` to ``dst`` (patterns' positions in two frames): the one
-    most cells of the frame agree on, refined on the patterns it fits. None where no fit is found
+def _paths_step(src: np.ndarray, dst: np.ndarray, extent: np.ndarray) -> np.ndarray:
+    """(2, 3) step taking paths' positions ``src`` in one frame to theirs ``dst`` in the next:
+    :func:`similarity_step`, or where it finds none (or fewer than three paths), their median shift."""
+    src, dst = src.astype(np.float32), dst.astype(np.float32)
+    fitted = similarity_step(src, dst, extent) if len(src) >= 3 else None
+    if fitted is not None:
+        return fitted
+    return np.column_stack([np.eye(2), np.median(dst - src, axis=0)])
+
+
+def similarity_step(src: np.ndarray, dst: np.ndarray, extent: np.ndarray) -> np.ndarray | None:
+    """(2, 3) similarity taking ``src`` to ``dst`` (positions of patterns, regions or image points
+    in two frames whose (width, height) is at most ``extent``): the one most cells of the frame
+    agree on, refined on the points it fits. None where no fit is found
     or the fit zooms by more than ``MAX_ZOOM_STEP`` (patterns bunched in one frame can give a
     scale of 0, which no chain of camera motions survives)."""
     cell = np.minimum((src / extent * GRID).astype(np.int64), GRID - 1) @ np.array([GRID, 1])

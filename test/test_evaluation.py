@@ -67,7 +67,7 @@ def test_evaluate_writes_a_report(tmp_path: Path, venv_bin: Path) -> None:
     methods = data[0]["methods"]
     assert list(methods) == ["paper", "+ one path per object", "+ steps within reach", "+ label memory",
                              "+ camera motion", "+ camera motion from the images", "+ steady steps",
-                             "+ one object per cluster", "+ rejoin fragments",
+                             "+ own region moves", "+ one object per cluster", "+ rejoin fragments",
                              "+ core boxes",
                              "+ background out of boxes", "+ grown boxes",
                              "+ filled gaps", "+ one track per object", "+ own frames, twin clusters",

@@ -89,6 +89,10 @@ class TrapParams:
                                   "(bricks, tiles); a cluster mostly (in occurrences) of such patterns, but where "
                                   "steady ones of it are seen, or with none steady, half in hops on average, is "
                                   "background; 0 = off")
+    own_region: bool = _p(True, "robust: a cluster selected as a track whose own region (the one most of its "
+                                "occurrences hold) is found again, tau/5 frames before and after, where the camera's "
+                                "motion puts it more often than where the cluster's motion does stays with the scene "
+                                "(a chain of noise-born structures): it is background, and the next cluster is taken")
     one_object: bool = _p(True, "robust: a cluster of the cut whose patterns lie on two objects at once (further "
                                 "apart than half their sizes on average, or in tau frames) is split down the "
                                 "hierarchy; a selected cluster's pattern that shares its regions mostly with "

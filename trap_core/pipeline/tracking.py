@@ -19,7 +19,8 @@ from trap_core.rag import PlaneGraph
 from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, alone_at_ends, border_contacts,
                               border_share, camera_paths, camera_transforms, cluster_world_speed, hand_to_owners,
                               held_share, moves_in_hops, pattern_sizes, rejoin_fragments, shadowed, split_mixed,
-                              steady_patterns, whole_patterns_apart, without_backdrop, world_speed, world_steps)
+                              stays_with_scene, steady_patterns, whole_patterns_apart, without_backdrop, world_speed,
+                              world_steps)
 
 
 @dataclass
@@ -180,9 +181,26 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                 sub_paths = _with_paths(sub_paths, apart, free_paths)
                 summary = summarise(labels, sub_paths, occurrences, n_frames)
     own_frames = robust and params.own_frames
-    selected = select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
-                               params.min_track_length, params.separation, eligible=moving, own_frames=own_frames,
-                               seen=seen_frames(mined, clustered, labels) if own_frames else None)
+    seen = seen_frames(mined, clustered, labels) if own_frames else None
+
+    def selection(eligible: np.ndarray | None) -> list[int]:
+        return select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
+                               params.min_track_length, params.separation, eligible=eligible, own_frames=own_frames,
+                               seen=seen)
+    selected = selection(moving)
+    if robust and params.min_speed > 0 and params.own_region:  # until every selected cluster's own region moves
+        tested: set[int] = set()
+        while fresh := [c for c in selected if c not in tested]:
+            tested.update(fresh)
+            paths = summary.paths.dense(np.array(fresh), np.arange(n_frames))
+            still = [c for c, path in zip(fresh, paths)
+                     if stays_with_scene(mined, clustered[labels == c], path, graphs, transforms, params.core_share,
+                                         max(1, params.tau // 5))]
+            if not still:
+                break
+            moving = moving.copy()
+            moving[still] = False
+            selected = selection(moving)
     all_labels = np.full(mined.n_st, -1, dtype=np.int64)
     all_labels[clustered] = labels
     if robust and params.one_object:

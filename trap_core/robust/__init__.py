@@ -2,6 +2,7 @@
 track boxes without the background and where objects meet."""
 
 from trap_core.clustering import reaches_border
+from trap_core.robust.anchors import stays_with_scene
 from trap_core.robust.backdrop import (HELD_SHARE, SHADOWED_SHARE, held_share, shadowed,
                                        without_backdrop)
 from trap_core.robust.borders import continue_to_border, end_at_exits
@@ -29,5 +30,5 @@ __all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderCont
            "end_at_exits", "extend_from_twins", "fill_gaps", "grow_boxes", "hand_to_owners", "held_share",
            "join_handovers", "keep_one_size", "lookalike_tracks", "mend_shared_stretches", "merge_duplicates",
            "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments", "separate_groups", "shadowed",
-           "split_mixed", "steady_patterns", "swap_at_crossings", "whole_patterns_apart", "without_backdrop",
-           "world_speed", "world_steps"]
+           "split_mixed", "stays_with_scene", "steady_patterns", "swap_at_crossings", "whole_patterns_apart",
+           "without_backdrop", "world_speed", "world_steps"]

@@ -76,7 +76,6 @@ def _standing_still(graphs: Sequence[PlaneGraph], transforms: np.ndarray, points
     """Mask of ``regions`` of ``frame`` found again at most half as far from where the camera puts
     them as from where the track's points move, in every frame ``lag`` away (before, after) that
     the track covers."""
-    here = graphs[frame]
     still = np.ones(regions.size, dtype=bool)
     tested = False
     for other in (frame - lag, frame + lag):
@@ -87,16 +86,25 @@ def _standing_still(graphs: Sequence[PlaneGraph], transforms: np.ndarray, points
         if np.isnan(shift).any():
             continue
         tested = True
-        there = graphs[other]
-        moved = map_points(transforms[other] @ np.linalg.inv(transforms[frame]), here.centroid[regions])
-        for k, region in enumerate(regions.tolist()):
-            look_alike = ((there.label == here.label[region]) & (there.area < AREA_FACTOR * here.area[region])
-                          & (AREA_FACTOR * there.area > here.area[region]))
-            if not look_alike.any():
-                still[k] = False
-                continue
-            candidates = there.centroid[look_alike]
-            with_track = np.hypot(*(candidates - (here.centroid[region] + shift)).T).min()
-            with_camera = np.hypot(*(candidates - moved[k]).T).min()
-            still[k] &= 2 * with_camera < with_track
+        with_track, with_camera = found_again(graphs, transforms, frame, other, regions, shift)
+        still &= 2 * with_camera < with_track
     return still & tested
+
+
+def found_again(graphs: Sequence[PlaneGraph], transforms: np.ndarray, frame: int, other: int, regions: np.ndarray,
+                shift: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per region of ``regions`` (nodes of ``graphs[frame]``): the distance from where ``shift``
+    (a track's motion from ``frame`` to ``other``) puts it, and from where the camera's motion
+    (``transforms``) puts it, to the nearest region of ``graphs[other]`` that looks like it (same
+    label, area within ``AREA_FACTOR``); inf for both where none does."""
+    here, there = graphs[frame], graphs[other]
+    moved = map_points(transforms[other] @ np.linalg.inv(transforms[frame]), here.centroid[regions])
+    with_track, with_camera = np.full(regions.size, np.inf), np.full(regions.size, np.inf)
+    for k, region in enumerate(regions.tolist()):
+        look_alike = ((there.label == here.label[region]) & (there.area < AREA_FACTOR * here.area[region])
+                      & (AREA_FACTOR * there.area > here.area[region]))
+        if look_alike.any():
+            candidates = there.centroid[look_alike]
+            with_track[k] = np.hypot(*(candidates - (here.centroid[region] + shift)).T).min()
+            with_camera[k] = np.hypot(*(candidates - moved[k]).T).min()
+    return with_track, with_camera

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Benchmark: tracking quality of the defaults on synthetic videos with ground truth.
 
-Fifteen sets of 721-frame videos (``trap_core.synthetic.SceneConfig``): the Anim analogues (both
-presets, seeds 0-2), the variants looked at while the robust rules were chosen ("tuned"), variants
-never looked at while choosing them ("held-out"), frames larger than the working size ("larger",
+Seventeen sets of videos (721 frames but in the last two; ``trap_core.synthetic.SceneConfig``):
+the Anim analogues (both presets, seeds 0-2), the variants looked at while the robust rules were
+chosen ("tuned"), variants never looked at while choosing them ("held-out"), frames larger than the working size ("larger",
 segmented scaled down to ``max_side``), a camera that also turns and zooms ("camera"), objects of
 other shapes ("shapes": tall, round, several shapes at once), a mix of all of these made later, on
 which the last three rules were chosen ("recent"), another made after those ("fresh"), one with
@@ -12,13 +12,15 @@ those ("untouched"), one made after every rule but the usual size from clear fra
 made on it ("latest"), one made after that ("unseen"), one drawn at random after every
 rule ("blind"), other scenes: photographs as backgrounds ("photos"), and one drawn at random
 over cells, a road and photographs after every rule but the two look-alike ones, the first of
-which was made on it ("drawn"). Prints, per video, the tracks
+which was made on it ("drawn"), one drawn at random over every background and size, segmented with
+Felzenszwalb ("random"), and one more drawn so once the camera's motion was read from the images
+("after"). Prints, per video, the tracks
 found without being told the number of objects, each object's box precision/recall (%) and
 MOTA / IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90 or
 better and the mean MOTA / IDF1, and that share over all sets run; with ``--pictures DIR``, each
 video's tracks as a contact sheet and a timeline. Graphs are cached (``--cache``), so a second
 run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,photos,drawn,random] [-p name:=value]``
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,random,after] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
@@ -264,12 +266,46 @@ RANDOM = [  # drawn at random (session 31: sizes 320x240 to 1280x720, 300 to 721
      dict(seed=992, objects=4, shape="disc", background="gravel", width=320, height=240, frames=721, noise=2.0,
           rotation=15.0, illumination=0.05, object_scale=0.8), "felzenszwalb"),
 ]
+AFTER = [  # drawn at random (generator 20261127, as RANDOM was drawn) after the camera's motion was read from the
+    # images (session 35), tracked as it came; no rule made or checked on it
+    ("distinct, car, 3 objects 1.2x, 960x540, 450 frames, zoom 10 %, turn 15 deg, noise 2, immunohistochemistry",
+     dict(seed=1101, objects=3, shape="car", background="immunohistochemistry", width=960, height=540, frames=450,
+          noise=2.0, zoom=0.1, rotation=15.0, object_scale=1.2), "felzenszwalb"),
+    ("identical, mixed shapes, 4 objects 0.8x, 400x300, 721 frames, zoom 5 %, noise 1, hubble_deep_field",
+     dict(seed=1102, identical=True, objects=4, shape="mixed", background="hubble_deep_field", width=400, height=300,
+          frames=721, noise=1.0, zoom=0.05, object_scale=0.8), "felzenszwalb"),
+    ("distinct, mixed shapes, 2 objects 0.8x, 640x480, 300 frames, zoom 5 %, noise 0.5, retina",
+     dict(seed=1103, objects=2, shape="mixed", background="retina", width=640, height=480, frames=300, noise=0.5,
+          zoom=0.05, object_scale=0.8), "felzenszwalb"),
+    ("distinct, car, 5 objects 0.8x, 960x540, 721 frames, zoom 15 %, turn 15 deg, illumination 10 %, noise 1, "
+     "colorwheel",
+     dict(seed=1104, objects=5, shape="car", background="colorwheel", width=960, height=540, frames=721, noise=1.0,
+          illumination=0.1, zoom=0.15, rotation=15.0, object_scale=0.8), "felzenszwalb"),
+    ("distinct, disc, 3 objects 0.8x, 800x600, 450 frames, zoom 15 %, turn 10 deg, noise 1.5, chelsea",
+     dict(seed=1105, objects=3, shape="disc", background="chelsea", width=800, height=600, frames=450, noise=1.5,
+          zoom=0.15, rotation=10.0, object_scale=0.8), "felzenszwalb"),
+    ("distinct, mixed shapes, 2 objects 1.2x, 320x240, 721 frames, illumination 10 %, noise 0.5, retina",
+     dict(seed=1106, objects=2, shape="mixed", background="retina", width=320, height=240, frames=721, noise=0.5,
+          illumination=0.1, object_scale=1.2), "felzenszwalb"),
+    ("distinct, person, 5 objects, 1280x720, 300 frames, zoom 10 %, turn 15 deg, noise 2, immunohistochemistry",
+     dict(seed=1107, objects=5, shape="person", background="immunohistochemistry", width=1280, height=720,
+          frames=300, noise=2.0, zoom=0.1, rotation=15.0), "felzenszwalb"),
+    ("identical, disc, 4 objects 0.8x, 400x300, 450 frames, zoom 15 %, noise 1.5, coffee",
+     dict(seed=1108, identical=True, objects=4, shape="disc", background="coffee", width=400, height=300,
+          frames=450, noise=1.5, zoom=0.15, object_scale=0.8), "felzenszwalb"),
+    ("distinct, person, 4 objects 0.8x, 800x600, 450 frames, turn 10 deg, illumination 10 %, noise 0.5, grass",
+     dict(seed=1109, objects=4, shape="person", background="grass", width=800, height=600, frames=450, noise=0.5,
+          illumination=0.1, rotation=10.0, object_scale=0.8), "felzenszwalb"),
+    ("identical, disc, 5 objects 0.8x, 960x540, 450 frames, zoom 15 %, turn 15 deg, illumination 10 %, camera",
+     dict(seed=1110, identical=True, objects=5, shape="disc", background="camera", width=960, height=540,
+          frames=450, illumination=0.1, zoom=0.15, rotation=15.0, object_scale=0.8), "felzenszwalb"),
+]
 MAX_KEY = 200  # characters of a cached video's file name (scenes with many settings have longer keys)
 FELZENSZWALB_ONLY = ("k", "max_regions", "sigma", "min_size", "threshold", "connectivity")  # no effect on exact-colour regions
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
         "shapes": SHAPES, "recent": RECENT, "fresh": FRESH,
         "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST, "unseen": UNSEEN, "blind": BLIND,
-        "photos": PHOTOS, "drawn": DRAWN, "random": RANDOM}
+        "photos": PHOTOS, "drawn": DRAWN, "random": RANDOM, "after": AFTER}
 
 
 def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None = None,

@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""Benchmark: tracking time of the robust method against the paper's, on the same graphs.
+
+Issue 8 asks the robust method to be no slower than the paper's by more than 1.5x. For each
+video (by default Anim1, Anim2 and four identical objects with a turning camera and noise,
+seed 161, whose look-alike rules cost the most), prints ``track()``'s time after the graphs
+(mining included), best of ``--repeat`` runs, for ``method: paper`` and ``method: robust``,
+and their ratio. Graphs come from ``quality.py``'s cache (made there on first use).
+Run: ``.venv/bin/python benchmarks/method_speed.py [--videos "analogues:anim1 seed 0;..."]``.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import quality  # noqa: E402  (the benchmark sets and their graph cache)
+
+from trap_core.pipeline import TrapParams, track  # noqa: E402
+
+VIDEOS = "analogues:anim1 seed 0;analogues:anim2 seed 0;newest:identical, 4 objects, turn 10 deg, noise 1, Felzenszwalb"
+
+
+def _best_time(graphs: list, params: TrapParams, repeat: int) -> float:
+    """Least seconds of ``repeat`` runs of :func:`track` on ``graphs``."""
+    best = float("inf")
+    for _ in range(repeat):
+        start = time.perf_counter()
+        track(graphs, params)
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--videos", default=VIDEOS, help="set:label pairs of quality.py, separated by ';'")
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--cache", type=Path, default=Path.home() / ".cache" / "trap_ros" / "quality")
+    args = parser.parse_args()
+    print("| video | paper s | robust s | robust / paper |\n|---|---|---|---|")
+    for video in args.videos.split(";"):
+        set_name, label = video.split(":", 1)
+        scene, segmentation = next((s, g) for name, s, g in quality.SETS[set_name] if name == label)
+        graphs, _ = quality._graphs(scene, segmentation, args.cache)
+        paper, robust = (_best_time(graphs, TrapParams.from_mapping({"segmentation": segmentation, "method": method}),
+                                    args.repeat) for method in ("paper", "robust"))
+        print(f"| {label} | {paper:.2f} | {robust:.2f} | {robust / paper:.2f} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -66,7 +66,7 @@ def main() -> None:
             for paths, image_steps in ((with_backdrop, None), (read, None), (read, steps)):
                 errors = _errors(camera_transforms(paths, len(graphs), image_steps), pan)
                 cells.append(f"{np.median(errors):.2f} / {np.percentile(errors, 90):.2f}")
-            from_images = np.isfinite(steps[1:]).all(axis=(1, 2)).mean()
+            from_images = np.mean([graph.has_camera_step for graph in graphs[1:]])
             print(f"| {set_name} | {label} | {largest:.2f} | {' | '.join(cells)} | {from_images:.2f} |", flush=True)
 
 

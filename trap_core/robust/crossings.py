@@ -29,6 +29,12 @@ from trap_core.robust.rejoin import structure_similarity
 LOOKALIKE_SIMILARITY = 0.1
 # Boxes whose median width and height differ by at most this share are of one size.
 SAME_SIZE = 0.1
+# Two tracks' boxes that overlap by at least this much somewhere in a meeting may hold a blend of
+# both objects: a track's box can glide from one onto the other there. At 0.5 (the same object
+# by the usual IoU test), look-alike people that crossed over brick with boxes overlapping by
+# 0.43 at most kept their trade (quality.py photos); with no bound, people on a road whose boxes
+# passed each other at 0.20 and who both turned there were exchanged (quality.py random).
+BLEND_IOU = 0.3
 
 
 def lookalike_tracks(tracks: Sequence[Track], labels: np.ndarray, st_pattern: np.ndarray, weights: np.ndarray,
@@ -50,8 +56,8 @@ def lookalike_tracks(tracks: Sequence[Track], labels: np.ndarray, st_pattern: np
     return (similarity[np.ix_(slot, slot)] >= min_similarity) | one_size
 
 
-def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike: np.ndarray, min_iou: float = 0.5
-                      ) -> list[Track]:
+def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike: np.ndarray,
+                      min_iou: float = BLEND_IOU) -> list[Track]:
     """Tracks with their continuations exchanged where two of them meet and trade objects.
 
     Two tracks meet while their box centres are closer than the smaller of their usual sizes
@@ -66,14 +72,18 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
     passes and somewhere in the meeting the boxes overlap by at least ``min_iou``, the lines
     after may start up to ``window`` frames later, past a blend of both objects
     (:func:`_best_cut`); where still none passes, the same test on the lines before and after
-    the whole meeting exchanges them at its middle frame (:func:`_across_meeting`). Where the
+    the whole meeting exchanges them at its middle frame (:func:`_across_meeting`), if there each
+    track's line before and the other's line after are at most the smaller size apart: the trade
+    needs no jump, each track's box glided from one object onto the other while they overlapped
+    (look-alikes that pass each other and both turn there are a jump apart). Where the
     lines at the cut lie inside the meeting, they may be on boxes of two objects that travel
     together: the cut is not taken where the lines before and after the whole meeting break
     less with the tracks' own pairing. Only tracks ``alike[a, b]`` (:func:`lookalike_tracks`)
     trade. The lines either side of the whole meeting exchange the tracks only if somewhere in
     it their boxes overlap by at least ``min_iou`` (may hold the same object): boxes that stay
     apart each kept their own object, and a trade between them would be a jump that the test at
-    each frame looks for.
+    each frame looks for. Two equal boxes overlap by ``BLEND_IOU`` when their centres are about
+    half a box apart.
     """
     out = list(tracks)
     boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
@@ -90,12 +100,13 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
                 blended = np.nan_to_num(box_iou(boxes[a, start:stop], boxes[b, start:stop])).max() >= min_iou
                 found = _best_cut(centres[a], centres[b], range(start, stop + 1), window, TURN * size,
                                   window if blended else 0)
-                outside = _across_meeting(centres[a], centres[b], start, stop, window)
+                kept, exchanged, apart = _across_meeting(centres[a], centres[b], start, stop, window)
                 if found is None:
-                    cut = (start + stop) // 2 if blended and _gain(*outside, TURN * size) > 0 else None
+                    glided = blended and bool(np.all(apart <= size))  # NaN: a line is missing
+                    cut = (start + stop) // 2 if glided and _gain(kept, exchanged, TURN * size) > 0 else None
                 else:
                     cut, (first_line, last_line) = found
-                    if start <= first_line and last_line <= stop and outside[0] < outside[1]:
+                    if start <= first_line and last_line <= stop and kept < exchanged:
                         cut = None
                 if cut is None:
                     continue
@@ -135,13 +146,19 @@ def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, l
 
 
 def _across_meeting(first: np.ndarray, second: np.ndarray, start: int, stop: int, window: int
-                    ) -> tuple[np.ndarray, np.ndarray]:
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:func:`_breaks` of a cut at the meeting's middle frame, judged from the lines over
     ``window`` frames before the meeting and after it (the tracks may hold one object together
-    in it, so that no single frame of it parts them, or travel together for long)."""
-    return _breaks(_lines(first, second, np.arange(max(start - window, 0), start)),
-                   _lines(first, second, np.arange(stop, min(stop + window, len(first)))),
-                   (start + stop) // 2, window + stop - start)
+    in it, so that no single frame of it parts them, or travel together for long), and, for the
+    exchanged pairing, how far each track's line before is from the other's line after at that
+    frame (2,); NaN where a line is missing."""
+    before = _lines(first, second, np.arange(max(start - window, 0), start))
+    after = _lines(first, second, np.arange(stop, min(stop + window, len(first))))
+    middle = (start + stop) // 2
+    kept, exchanged = _breaks(before, after, middle, window + stop - start)
+    at = middle - 0.5  # where _break measures the jump
+    return kept, exchanged, np.linalg.norm((before[:, 1] + before[:, 0] * at) - (after[::-1, 1] + after[::-1, 0] * at),
+                                           axis=1)
 
 
 def _lines(first: np.ndarray, second: np.ndarray, frames: np.ndarray) -> np.ndarray:

@@ -1460,6 +1460,39 @@ def test_lookalikes_that_turn_at_different_times_where_they_pass_keep_their_trac
     np.testing.assert_allclose(out[1].boxes, tracks[1].boxes)
 
 
+def test_a_cut_where_both_tracks_hold_one_object_is_left_to_the_whole_meeting() -> None:
+    """Track 1 holds object P (40x30), still until frame 50, then going left and down. Track 2
+    comes in, holds P too over frames 42-56 (its boxes jittered by 1 px), and leaves the other
+    way until frame 90. A cut inside those frames reads P's motion on both lines, and which
+    pairing breaks it less is the jitter (2 jitters of 20 exchanged the tracks there); the whole
+    meeting decides, and over every jitter track 1 keeps P. Two look-alikes that meet head on,
+    both tracks on the blend of both over frames 40-59 and each leaving with the other object,
+    still get their own objects back."""
+    from trap_core.robust import swap_at_crossings
+    t = np.arange(100, dtype=float)
+    size = np.tile([40.0, 30.0], (100, 1))
+    alike = np.ones((2, 2), dtype=bool)
+    p = np.array([300.0, 200.0]) + np.where(t[:, None] < 50, 0.0, [-2.0, 0.7]) * (t[:, None] - 50)
+    held = _as_track(1, np.arange(100), np.hstack([p - size / 2, size]))
+    for seed in range(20):
+        onto = p + np.random.default_rng(seed).normal(0.0, 1.0, p.shape)
+        onto[:42] = p[42] + [-3.0, 2.2] * (t[:42, None] - 42)
+        onto[57:] = p[57] + [3.2, -1.8] * (t[57:, None] - 57)
+        out = swap_at_crossings([held, _as_track(2, np.arange(91), np.hstack([onto - size / 2, size])[:91])], 100, 8,
+                                alike)
+        np.testing.assert_allclose(out[0].boxes, held.boxes)
+    right = np.column_stack([100 + 4 * t, np.full(100, 200.0)])
+    left = np.column_stack([500 - 4 * t, np.full(100, 200.0)])
+    blend = (right + left) / 2
+    first = np.vstack([right[:40], blend[40:60], left[60:]])
+    second = np.vstack([left[:40], blend[40:60], right[60:]])
+    out = swap_at_crossings([_as_track(1, np.arange(100), np.hstack([first - size / 2, size])),
+                             _as_track(2, np.arange(100), np.hstack([second - size / 2, size]))], 100, 8, alike)
+    away = np.abs(t - 50) > 12
+    np.testing.assert_allclose(out[0].boxes[away], np.hstack([right - size / 2, size])[away])
+    np.testing.assert_allclose(out[1].boxes[away], np.hstack([left - size / 2, size])[away])
+
+
 def test_lookalike_tracks_are_those_of_clusters_with_the_same_structures_or_boxes_of_one_size() -> None:
     """Tracks 1 and 2 (40x30 boxes) and track 3 (40x60) have clusters 0, 1 and 2."""
     from trap_core.robust import lookalike_tracks

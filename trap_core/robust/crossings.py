@@ -35,6 +35,8 @@ SAME_SIZE = 0.1
 # 0.43 at most kept their trade (quality.py photos); with no bound, people on a road whose boxes
 # passed each other at 0.20 and who both turned there were exchanged (quality.py random).
 BLEND_IOU = 0.3
+# Boxes that overlap by at least this much hold one object (the test the track rules use throughout).
+SAME_OBJECT_IOU = 0.5
 
 
 def lookalike_tracks(tracks: Sequence[Track], labels: np.ndarray, st_pattern: np.ndarray, weights: np.ndarray,
@@ -78,12 +80,16 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
     (look-alikes that pass each other and both turn there are a jump apart). Where the
     lines at the cut lie inside the meeting, they may be on boxes of two objects that travel
     together: the cut is not taken where the lines before and after the whole meeting break
-    less with the tracks' own pairing. Only tracks ``alike[a, b]`` (:func:`lookalike_tracks`)
-    trade. The lines either side of the whole meeting exchange the tracks only if somewhere in
-    it their boxes overlap by at least ``min_iou`` (may hold the same object): boxes that stay
-    apart each kept their own object, and a trade between them would be a jump that the test at
-    each frame looks for. Two equal boxes overlap by ``BLEND_IOU`` when their centres are about
-    half a box apart.
+    less with the tracks' own pairing. Where both tracks hold one object on either side of the
+    cut (:func:`_one_object_either_side`), its lines tell nothing (both pairings read that
+    object's motion, and which breaks it less is the jitter of two boxes on it: a track that went
+    onto another's object as its own left the view traded the rest of both tracks there), and
+    the lines either side of the whole meeting decide as where no frame passes. Only tracks
+    ``alike[a, b]`` (:func:`lookalike_tracks`) trade. The lines either side of the whole meeting
+    exchange the tracks only if somewhere in it their boxes overlap by at least ``min_iou`` (may
+    hold the same object): boxes that stay apart each kept their own object, and a trade between
+    them would be a jump that the test at each frame looks for. Two equal boxes overlap by
+    ``BLEND_IOU`` when their centres are about half a box apart.
     """
     out = list(tracks)
     boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
@@ -100,6 +106,8 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
                 blended = np.nan_to_num(box_iou(boxes[a, start:stop], boxes[b, start:stop])).max() >= min_iou
                 found = _best_cut(centres[a], centres[b], range(start, stop + 1), window, TURN * size,
                                   window if blended else 0)
+                if found is not None and _one_object_either_side(boxes[a], boxes[b], found[0], *found[1]):
+                    found = None  # the cut's lines read one object: the whole meeting tells
                 kept, exchanged, apart = _across_meeting(centres[a], centres[b], start, stop, window)
                 if found is None:
                     glided = blended and bool(np.all(apart <= size))  # NaN: a line is missing
@@ -114,6 +122,16 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
                 for path in (boxes, centres):
                     path[[a, b], cut:] = path[[b, a], cut:]
     return out
+
+
+def _one_object_either_side(first: np.ndarray, second: np.ndarray, cut: int, first_line: int, last_line: int
+                            ) -> bool:
+    """Whether two box paths (n_frames, 4) hold one object both before ``cut`` (from
+    ``first_line``) and from it on (to ``last_line``): their boxes overlap by at least
+    ``SAME_OBJECT_IOU`` in most frames of each side (median; NaN where either is absent counts 0)."""
+    overlap = np.nan_to_num(box_iou(first[first_line:last_line + 1], second[first_line:last_line + 1]))
+    split = cut - first_line
+    return bool(np.median(overlap[:split]) >= SAME_OBJECT_IOU and np.median(overlap[split:]) >= SAME_OBJECT_IOU)
 
 
 def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, least: float, most_skipped: int

@@ -129,9 +129,11 @@ def _one_object_either_side(first: np.ndarray, second: np.ndarray, cut: int, fir
     """Whether two box paths (n_frames, 4) hold one object both before ``cut`` (from
     ``first_line``) and from it on (to ``last_line``): their boxes overlap by at least
     ``SAME_OBJECT_IOU`` in most frames of each side (median; NaN where either is absent counts 0)."""
+    first_line = max(first_line, 0)  # a line drawn from the video's start
     overlap = np.nan_to_num(box_iou(first[first_line:last_line + 1], second[first_line:last_line + 1]))
-    split = cut - first_line
-    return bool(np.median(overlap[:split]) >= SAME_OBJECT_IOU and np.median(overlap[split:]) >= SAME_OBJECT_IOU)
+    before, after = overlap[:cut - first_line], overlap[cut - first_line:]
+    return bool(before.size and after.size and np.median(before) >= SAME_OBJECT_IOU
+                and np.median(after) >= SAME_OBJECT_IOU)
 
 
 def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, least: float, most_skipped: int

@@ -176,9 +176,7 @@ def _across_meeting(first: np.ndarray, second: np.ndarray, start: int, stop: int
     after = _lines(first, second, np.arange(stop, min(stop + window, len(first))))
     middle = (start + stop) // 2
     kept, exchanged = _breaks(before, after, middle, window + stop - start)
-    at = middle - 0.5  # where _break measures the jump
-    return kept, exchanged, np.linalg.norm((before[:, 1] + before[:, 0] * at) - (after[::-1, 1] + after[::-1, 0] * at),
-                                           axis=1)
+    return kept, exchanged, _jump(before, after[::-1], middle)
 
 
 def _lines(first: np.ndarray, second: np.ndarray, frames: np.ndarray) -> np.ndarray:
@@ -212,9 +210,17 @@ def _break(before: np.ndarray, after: np.ndarray, cut: np.ndarray | int, window:
     """How much going from the line ``before`` (velocity, position at frame 0) to the line
     ``after`` at ``cut`` breaks a straight motion: the change of velocity, and the jump between
     the lines spread over ``window`` frames. Lines (..., 2, 2) and cuts (...) broadcast."""
+    velocity_change = np.linalg.norm(after[..., 0, :] - before[..., 0, :], axis=-1)
+    return velocity_change + _jump(before, after, cut) / window
+
+
+def _jump(before: np.ndarray, after: np.ndarray, cut: np.ndarray | int) -> np.ndarray:
+    """Distance between the lines ``before`` and ``after`` (velocity, position at frame 0) where
+    the one gives way to the other, halfway between frames ``cut - 1`` and ``cut``. Lines
+    (..., 2, 2) and cuts (...) broadcast."""
     (v0, p0), (v1, p1) = np.moveaxis(before, -2, 0), np.moveaxis(after, -2, 0)
     at = np.asarray(cut, dtype=float)[..., None] - 0.5
-    return np.linalg.norm(v1 - v0, axis=-1) + np.linalg.norm((p1 + v1 * at) - (p0 + v0 * at), axis=-1) / window
+    return np.linalg.norm((p1 + v1 * at) - (p0 + v0 * at), axis=-1)
 
 
 def _exchanged(a: Track, b: Track, cut: int) -> tuple[Track, Track]:

@@ -89,6 +89,21 @@ def test_the_camera_step_travels_with_the_graph() -> None:
     assert not first.has_camera_step and not graph_from_bytes(graph_to_bytes(first)).has_camera_step
 
 
+def test_the_graph_stage_reads_the_steps_only_where_tracking_does() -> None:
+    """The paper's method, and the robust one told not to (``image_motion`` false), never look at
+    the camera's steps: their graphs are made without reading them (2.5 ms a frame), unless
+    asked for (the evaluation's ablation takes both methods from one set of graphs)."""
+    from trap_core.pipeline import TrapParams, graphs_of
+    scene = skimage.data.astronaut()
+    frames = [scene[2 * t:120 + 2 * t, 3 * t:160 + 3 * t].copy() for t in range(4)]
+
+    def read(params: TrapParams, **asked: bool) -> list[bool]:
+        return [graph.has_camera_step for graph in graphs_of(frames, params, **asked)]
+    assert read(TrapParams()) == [False, True, True, True]
+    assert read(TrapParams(method="paper")) == read(TrapParams(image_motion=False)) == [False] * 4
+    assert read(TrapParams(method="paper"), image_steps=True) == [False, True, True, True]
+
+
 def test_objects_over_a_smooth_background_are_tracked_with_the_camera_read_from_the_images() -> None:
     """Two people over a colour wheel (320x240, 150 frames): the wheel gives no frequent pattern and
     few regions, so the camera's motion read from patterns and regions follows the people (over a

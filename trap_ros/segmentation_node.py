@@ -18,7 +18,7 @@ from rclpy.node import Node
 from sensor_msgs.msg import CompressedImage, Image
 from visualization_msgs.msg import MarkerArray
 
-from trap_core.pipeline import GRAPH_STAGE, first_frame_setup, frame_graph
+from trap_core.pipeline import GRAPH_STAGE, IMAGE_STEP_STAGE, first_frame_setup, frame_graph
 from trap_core.segmentation import SegmentationError
 from trap_ros.messages import graph_markers, graph_message, image_rgb
 from trap_ros.node_main import run_node
@@ -32,9 +32,9 @@ class SegmentationNode(Node):
     def __init__(self, **kwargs) -> None:
         kwargs.setdefault("namespace", "trap")
         super().__init__("segmentation", **kwargs)
-        declare_trap_parameters(self, GRAPH_STAGE)
+        declare_trap_parameters(self, GRAPH_STAGE + IMAGE_STEP_STAGE)
         self.declare_parameter("publish_markers", True)
-        self.params = trap_parameters(self, GRAPH_STAGE)
+        self.params = trap_parameters(self, GRAPH_STAGE + IMAGE_STEP_STAGE)
         self.markers = bool(self.get_parameter("publish_markers").value)
         self.graph_pub = self.create_publisher(CompressedImage, "graph", PIPELINE)
         self.marker_pub = self.create_publisher(MarkerArray, "graph_markers", PIPELINE)
@@ -44,7 +44,8 @@ class SegmentationNode(Node):
         self.published = 0
         self.errors = 0
         self.fitted = False  # whether the first frame set the segmentation up (first_frame_setup)
-        self.previous: np.ndarray | None = None  # the last frame submitted: the camera's step is read from it
+        # the last frame submitted, where tracking reads the camera's step from the images (read from it)
+        self.previous: np.ndarray | None = None
         self.error: str | None = None  # why no frame can be segmented (first_frame_setup refused the first)
         self.create_subscription(Image, "image", self._on_image, PIPELINE)
         self.create_timer(0.02, self.publish_done)
@@ -70,7 +71,7 @@ class SegmentationNode(Node):
                 for note in notes:
                     self.get_logger().warning(note)
             self.pending.append((self.pool.submit(frame_graph, rgb, self.params, self.previous), message.header))
-            self.previous = rgb
+            self.previous = rgb if self.params.reads_image_steps else None
             self._publish_ready(block=len(self.pending) > 2 * self.params.threads)
 
     def _downstream_ready(self, block: bool) -> bool:

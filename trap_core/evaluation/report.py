@@ -71,8 +71,9 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
         meter = Progress(stream.count, f"evaluate {name}: graphs")
         thumbnails = Thumbnails(stream.count)
         start = time.perf_counter()
+        # with the camera's steps whatever the base method: the ablation adds them in its own step
         graphs = list(graphs_of(thumbnailed_frames(stream, thumbnails, meter), base,
-                                lambda used, notes: print("\n".join(notes), file=sys.stderr)))
+                                lambda used, notes: print("\n".join(notes), file=sys.stderr), image_steps=True))
         graph_seconds = time.perf_counter() - start
         meter.finish()
     n_frames = len(graphs)

@@ -169,13 +169,17 @@ def _last_pixel(last: np.ndarray, scale: float) -> np.ndarray:
 
 
 def graphs_of(frames: Iterable[np.ndarray], params: TrapParams,
-              told: Callable[[TrapParams, list[str]], None] | None = None) -> Iterator[PlaneGraph]:
+              told: Callable[[TrapParams, list[str]], None] | None = None,
+              image_steps: bool | None = None) -> Iterator[PlaneGraph]:
     """Plane graph of each frame, in order, with the parameters :func:`first_frame_setup` gives
-    on the first frame and the camera's step from the frame before (:func:`frame_graph`); where
-    it has lines for the user, they and those parameters are passed to ``told`` (the run prints
-    them and reports the ``k`` it used). If ``frames`` fails (a bad
-    frame in a bag), the graphs of the frames before it are still given, then the error is
-    raised."""
+    on the first frame and the camera's step from the frame before (:func:`frame_graph`) where
+    ``image_steps`` (by default where tracking with ``params`` reads them,
+    :attr:`TrapParams.reads_image_steps`); where :func:`first_frame_setup` has lines for the
+    user, they and those parameters are passed to ``told`` (the run prints them and reports the
+    ``k`` it used). If ``frames`` fails (a bad frame in a bag), the graphs of the frames before
+    it are still given, then the error is raised."""
+    if image_steps is None:
+        image_steps = params.reads_image_steps
     failure: Exception | None = None
     with ThreadPoolExecutor(params.threads, thread_name_prefix="trap-graph") as pool:
         pending: deque[Future] = deque()
@@ -195,7 +199,7 @@ def graphs_of(frames: Iterable[np.ndarray], params: TrapParams,
                 if told is not None and notes:
                     told(params, notes)
             pending.append(pool.submit(frame_graph, rgb, params, previous))
-            previous = rgb
+            previous = rgb if image_steps else None
             if len(pending) >= 2 * params.threads:
                 yield pending.popleft().result()
         while pending:

@@ -14,6 +14,9 @@ METHODS = ("paper", "robust")
 # Which node needs which parameters (the segmentation node: stages 1-2; the mining node: 3-7).
 GRAPH_STAGE = ("segmentation", "k", "max_regions", "sigma", "min_size", "threshold", "connectivity", "max_side",
                "colour_bins", "contact_tolerance", "threads")
+# What the segmentation node also reads: whether tracking will take the camera's steps from the
+# images (:attr:`TrapParams.reads_image_steps`); the graph stage reads them only then.
+IMAGE_STEP_STAGE = ("method", "image_motion", "min_speed", "grow", "still_regions")
 
 
 class ParameterError(ValueError):
@@ -187,6 +190,16 @@ class TrapParams:
         """The longer side frames of ``width`` x ``height`` are segmented at when it is not
         their own (``max_side``), else None."""
         return None if not self.max_side or max(width, height) == self.max_side else self.max_side
+
+    @property
+    def reads_image_steps(self) -> bool:
+        """Whether tracking reads the camera's steps between frames from the images: the robust
+        method's camera motion (``image_motion``), which it reads only where a rule needs the camera
+        (``min_speed``, ``grow``, ``still_regions``). The graph stage reads each step with the frame
+        (2.5 ms a frame, README "Camera motion from the images") only then: the paper's method
+        never looks at it."""
+        return self.method == "robust" and self.image_motion and bool(self.min_speed > 0 or self.grow
+                                                                      or self.still_regions)
 
     def as_dict(self) -> dict[str, Any]:
         return dataclasses.asdict(self)

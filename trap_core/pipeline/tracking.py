@@ -71,7 +71,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     if robust and (params.min_speed > 0 or params.grow or params.still_regions):
         free = without_backdrop(mined, graphs)  # where the backdrop is, occurrences placed and boxed without it
         free_observed = observed if free is mined else observed_paths(free)
-        image_steps = np.stack([graph.camera_step for graph in graphs]) if params.image_motion else None
+        image_steps = np.stack([graph.camera_step for graph in graphs]) if params.reads_image_steps else None
         transforms = camera_transforms(camera_paths(graphs, free_observed, params.eps), n_frames, image_steps)
     still_below = params.min_speed * width  # px per frame
     if robust and params.min_speed > 0:

@@ -42,3 +42,20 @@ def test_out_is_a_file(venv_bin: Path, tmp_path: Path, small_bag: Path, command:
 @pytest.mark.parametrize("args,pattern", [(["--width", "8"], "too small"), (["--frames", "0"], "frames >= 1")])
 def test_make_synthetic_absurd_parameters(venv_bin: Path, tmp_path: Path, args: list[str], pattern: str) -> None:
     _assert_one_line_error(_run(venv_bin, "make_synthetic", str(tmp_path / "b"), *args, cwd=tmp_path), pattern)
+
+
+def test_every_parameter_is_in_the_parameter_file_at_its_default_and_in_the_readme() -> None:
+    """``config/trap.yaml`` is the paper's defaults as a ROS parameter file and the README's table
+    says what each parameter does: a parameter added to one and not the others would be unset
+    from the file or undocumented."""
+    import re
+
+    import yaml
+
+    from trap_core.pipeline import TrapParams
+    top = Path(__file__).resolve().parents[1]
+    defaults = TrapParams().as_dict()
+    in_file = yaml.safe_load((top / "config" / "trap.yaml").read_text())["/**"]["ros__parameters"]
+    assert in_file == defaults
+    in_readme = re.findall(r"^\| `(\w+)` \|", (top / "README.md").read_text(), re.MULTILINE)
+    assert sorted(set(in_readme) & set(defaults)) == sorted(defaults)

@@ -69,7 +69,7 @@ def test_evaluate_writes_a_report(tmp_path: Path, venv_bin: Path) -> None:
                              "+ camera motion", "+ camera motion from the images", "+ steady steps",
                              "+ own region moves", "+ one object per cluster", "+ rejoin fragments",
                              "+ core boxes",
-                             "+ background out of boxes", "+ grown boxes",
+                             "+ background out of boxes", "+ grown boxes", "+ edge lines out of boxes",
                              "+ filled gaps", "+ one track per object", "+ own frames, twin clusters",
                              "+ steady box size", "+ where objects meet",
                              "robust (+ across the border)"]

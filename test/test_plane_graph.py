@@ -259,6 +259,8 @@ def test_pixel_distances_are_pixels_of_the_working_size() -> None:
     small = params.in_frame_pixels(320, 240)  # segmented 2x larger: objects 2x smaller in its pixels
     assert (small.eps, small.separation) == (40.0, 15.0)
     assert TrapParams(max_side=0).in_frame_pixels(1920, 1080).separation == 40.0
+    assert (params.working_pixel(1920, 1080), params.working_pixel(320, 240), params.working_pixel(480, 640)) == (
+        3.0, 0.5, 1.0)
 
 
 def test_a_small_frame_is_segmented_scaled_up_and_its_geometry_given_back_in_its_pixels() -> None:
@@ -374,3 +376,39 @@ def test_occurrences_nodes_in_one_pass_are_the_faces_nodes_one_by_one() -> None:
         expected = np.unique(np.concatenate([graph.face_nodes(f) for f in row if f >= 0]))
         assert np.array_equal(nodes[start:end], expected)
     assert np.array_equal(graph.faces_nodes(frozenset(face_sets[0][face_sets[0] >= 0].tolist())), nodes[:ends[0]])
+
+
+
+def test_thickness_tells_a_line_from_a_body() -> None:
+    """Twice the area over the perimeter: about 1 for a line of single pixels, half the side of
+    a square."""
+    labels = np.zeros((40, 40), dtype=np.int32)
+    labels[10:30, 10:30] = 1
+    labels[5, 2:38] = 2
+    labels, n = relabel_4connected(labels)
+    graph = build_plane_graph(labels, n, np.zeros((40, 40, 3), dtype=np.uint8))
+    assert graph.thickness[labels[20, 20]] == pytest.approx(10.0, rel=0.05)
+    assert graph.thickness[labels[5, 20]] < 1.1
+
+
+def test_the_line_outside_a_sharp_edge_does_not_widen_the_box() -> None:
+    """A sharp rectangle over a plain ground, segmented after smoothing: the pixels either side
+    of its edge become lines of their own. The outer one is ground in the frame, yet widens the
+    rectangle's box by a pixel all round; given the working pixel, the box is the rectangle's.
+    The inner lines, of the rectangle's colour, stay; a box that only outer lines touch does
+    not grow."""
+    rng = np.random.default_rng(0)
+    rgb = np.full((80, 100, 3), (40, 90, 40), dtype=np.uint8)
+    rgb[30:50, 20:60] = (220, 60, 60)
+    noisy = np.clip(rgb + rng.normal(0, 1, rgb.shape), 0, 255).astype(np.uint8)
+    labels, n = felzenszwalb(noisy, k=7.0, sigma=0.8, min_size=20)
+    graph = build_plane_graph(labels, n, noisy)
+    held = np.flatnonzero(np.arange(graph.n_nodes) != labels[0, 0])
+    rectangle = [20.0, 30.0, 40.0, 20.0]
+    assert graph.nodes_box(held).tolist() == [19.0, 29.0, 42.0, 22.0]
+    assert graph.nodes_box(held, pixel=1.0).tolist() == rectangle
+    outer = graph.outer_lines(held, 1.0)
+    assert outer.any() and (graph.thickness[held[outer]] < 1.5).all()
+    assert not outer[np.isin(held, labels[[30, 40, 49], [40, 20, 40]])].any()  # the inner lines and the body
+    assert graph.nodes_box(held[outer], pixel=1.0, around=np.array(rectangle)).tolist() == rectangle
+    assert graph.nodes_box(held[outer], around=np.array(rectangle)).tolist() == [19.0, 29.0, 42.0, 22.0]

@@ -136,13 +136,15 @@ def _intersection(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray,
 
 
 def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, track_id: int,
-                graphs: Sequence[PlaneGraph] | None = None, core_share: float = 0.0) -> Track:
+                graphs: Sequence[PlaneGraph] | None = None, core_share: float = 0.0, pixel: float = 0.0) -> Track:
     """Box of the cluster in each frame: around the regions of its patterns' occurrences there.
 
     With ``graphs`` and ``core_share > 0`` (ours), only the regions found in at least that
     share of the frame's occurrences in the track's place count (as many as the most shared
     region, :func:`core_regions`): a pattern that mixes the object with a background region it
-    passes over then does not stretch the box to that whole background region.
+    passes over then does not stretch the box to that whole background region. With ``pixel``
+    too (frame pixels per pixel of the segmentation's size), edge lines alone do not widen the
+    box (:meth:`PlaneGraph.nodes_box`).
 
     Confidence: the number of the cluster's patterns seen in the frame over the most seen in
     any frame (1 where the object shows all its structure).
@@ -163,7 +165,8 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     around = np.column_stack([x0, y0, x1 - x0 + 1, y1 - y0 + 1])
     if graphs is not None and core_share > 0:
         for slot, (frame, face_sets, lifetimes) in enumerate(frame_face_sets(result, patterns)):
-            around[slot] = graphs[frame].nodes_box(core_regions(graphs[frame], face_sets, core_share, lifetimes)[0])
+            around[slot] = graphs[frame].nodes_box(core_regions(graphs[frame], face_sets, core_share, lifetimes)[0],
+                                                   pixel)
     seen = np.unique(np.column_stack([inverse, owner]), axis=0)[:, 0]
     per_frame = np.bincount(seen, minlength=known.size).astype(float)
     score = per_frame / per_frame.max() if per_frame.size else per_frame

@@ -108,6 +108,10 @@ class TrapParams:
                                    "far from where the camera's motion puts it as from where the track's does is "
                                    "background the object crosses: it leaves the box (the region most occurrences "
                                    "hold stays)")
+    edge_lines: bool = _p(True, "robust: the lines of blended pixels that smoothing before segmentation makes "
+                                "along a sharp edge (regions thinner than 1.5 px of the working size), where nearer "
+                                "in colour to the ground outside the box than to what it holds, do not widen a track "
+                                "box by their width")
     size_jump: float = _p(1.5, "robust: a track box this many times wider or taller than its usual size (running "
                                "median over 4 tau frames each side where it is alone) holds more than the object, "
                                "one this many times narrower or shorter (away from the border) a part of it: it is "
@@ -181,10 +185,13 @@ class TrapParams:
         as the objects do. ``eps`` stays in frame pixels: it only bounds a link whose step is already
         bounded by the pattern's own size (``link_reach``), and scaling it too was measured worse
         (more links across look-alikes)."""
+        pixel = self.working_pixel(width, height)
+        return self if pixel == 1.0 else dataclasses.replace(self, separation=self.separation * pixel)
+
+    def working_pixel(self, width: float, height: float) -> float:
+        """Frame pixels per pixel of the size frames of ``width`` x ``height`` are segmented at."""
         working = self.working_side(width, height)
-        if working is None:
-            return self
-        return dataclasses.replace(self, separation=self.separation * max(width, height) / working)
+        return 1.0 if working is None else max(width, height) / working
 
     def working_side(self, width: float, height: float) -> int | None:
         """The longer side frames of ``width`` x ``height`` are segmented at when it is not

@@ -47,12 +47,15 @@ class ClusterTracks:
         params = self.params
         robust = params.method == "robust"
         lag = max(1, params.tau // 5)  # frames either side where a region is looked for again
-        built = build_track(self.mined, self.labels, cluster, 0, self.graphs, params.core_share if robust else 0.0)
+        # frame pixels per pixel of the segmentation's size, for edge lines (0: they count like any region)
+        pixel = params.working_pixel(*self.graphs[0].frame_size) if robust and params.edge_lines else 0.0
+        built = build_track(self.mined, self.labels, cluster, 0, self.graphs, params.core_share if robust else 0.0,
+                            pixel)
         if robust and params.still_regions and params.core_share > 0:
             built = drop_still_regions(built, self.mined, self.labels, self.graphs, self.transforms,
-                                       params.core_share, lag)
+                                       params.core_share, lag, pixel)
         if robust and params.grow:
-            built = grow_boxes(built, self.graphs, self.transforms, lag=lag, max_gap=2 * lag)
+            built = grow_boxes(built, self.graphs, self.transforms, lag=lag, max_gap=2 * lag, pixel=pixel)
         if robust and params.fill_gaps:
             built = fill_gaps(built, params.tau)
         return built

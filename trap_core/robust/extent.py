@@ -37,7 +37,8 @@ MAX_AREA = 4.0
 
 
 def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarray, lag: int = 5,
-               reach: float = 0.5, tolerance: float = 0.3, max_gap: int = 0, rounds: int = 3) -> Track:
+               reach: float = 0.5, tolerance: float = 0.3, max_gap: int = 0, rounds: int = 3,
+               pixel: float = 0.0) -> Track:
     """The track with each box grown over the nearby regions that move with it.
 
     Parameters
@@ -62,6 +63,9 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
     rounds : int
         Times a box grows: each round searches around the box the previous one grew, and after
         the first a region must be found again both ``lag`` frames before and after.
+    pixel : float
+        Frame pixels per pixel of the segmentation's size: edge lines alone do not grow a box
+        by their width (:meth:`~trap_core.rag.PlaneGraph.nodes_box`); 0: they do.
 
     Returns
     -------
@@ -71,27 +75,23 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
     slot = np.full(len(graphs), -1)
     slot[reference.frames] = np.arange(len(reference))
     core = reference.boxes.astype(float)
-    boxes = track.boxes.astype(float)
+    searched = track.boxes.astype(float)  # each round searches around what the rounds before took in
+    boxes = searched.copy()  # and the box grows as far, but for the edge lines outside it (``pixel``)
     for i, frame in enumerate(track.frames.tolist()):
         here, from_here = graphs[frame], np.linalg.inv(transforms[frame])
         sides = [(graphs[other], core[slot[other]], transforms[other] @ from_here)
                  for other in (frame - lag, frame + lag) if 0 <= other < len(graphs) and slot[other] >= 0]
         for round_ in range(rounds if len(sides) == 2 else 1):
             found = [moving_regions(here.bbox, here.centroid, here.area, here.label, there.centroid, there.area,
-                                    there.label, core[slot[frame]], there_box, boxes[i], camera, reach,
+                                    there.label, core[slot[frame]], there_box, searched[i], camera, reach,
                                     tolerance, MAX_AREA) for there, there_box, camera in sides]
             moving = np.logical_or.reduce(found) if round_ == 0 else np.logical_and.reduce(found)
             moving &= ~here.backdrop
             if not np.any(moving):
                 break
-            grown = _around(boxes[i], here.nodes_box(moving))
-            if np.array_equal(grown, boxes[i]):
+            grown = here.nodes_box(moving, around=searched[i])
+            if np.array_equal(grown, searched[i]):
                 break
-            boxes[i] = grown
+            searched[i] = grown
+            boxes[i] = here.nodes_box(moving, pixel, around=boxes[i])
     return dataclasses.replace(track, boxes=boxes)
-
-
-def _around(box: np.ndarray, other: np.ndarray) -> np.ndarray:
-    """(x, y, w, h) of the box around two boxes (x, y, w, h)."""
-    corner = np.minimum(box[:2], other[:2])
-    return np.r_[corner, np.maximum(box[:2] + box[2:], other[:2] + other[2:]) - corner]

@@ -31,7 +31,8 @@ AREA_FACTOR = 2.0  # a background region the object passes over loses or regains
 
 
 def drop_still_regions(track: Track, result: MiningResult, pattern_labels: np.ndarray,
-                       graphs: Sequence[PlaneGraph], transforms: np.ndarray, share: float, lag: int) -> Track:
+                       graphs: Sequence[PlaneGraph], transforms: np.ndarray, share: float, lag: int,
+                       pixel: float = 0.0) -> Track:
     """The track with each core box rebuilt without the core regions that stand still.
 
     Parameters
@@ -48,6 +49,9 @@ def drop_still_regions(track: Track, result: MiningResult, pattern_labels: np.nd
         ``core_share`` of the core boxes.
     lag : int
         Frames before and after where a region is looked for again.
+    pixel : float
+        Frame pixels per pixel of the segmentation's size: edge lines alone do not widen the
+        rebuilt boxes (:meth:`~trap_core.rag.PlaneGraph.nodes_box`); 0: they do.
 
     Returns
     -------
@@ -67,7 +71,7 @@ def drop_still_regions(track: Track, result: MiningResult, pattern_labels: np.nd
             continue
         still = _standing_still(graphs, transforms, track.points, slot, frame, others, lag)
         if still.any():
-            boxes[i] = graphs[frame].nodes_box(np.r_[anchor, others[~still]])
+            boxes[i] = graphs[frame].nodes_box(np.r_[anchor, others[~still]], pixel)
     return dataclasses.replace(track, boxes=boxes)
 
 

@@ -127,7 +127,7 @@ class PlaneGraph:
         distance = np.linalg.norm(self.colour[origin] - self.colour[other], axis=1)
         order = np.lexsort((distance, origin))
         first = np.r_[True, origin[order][1:] != origin[order][:-1]]
-        nearest = np.full(self.n_nodes, -1, dtype=np.int64)
+        nearest = np.full(self.n_nodes, -1, dtype=np.int32)  # held with the graph: kept small
         nearest[origin[order][first]] = other[order][first]
         return nearest
 
@@ -149,7 +149,7 @@ class PlaneGraph:
         contacts' lengths, the image border's included): about 1 for a line of single pixels,
         half the side of a square, the radius of a disc. Read once per graph."""
         perimeter = np.bincount(self.he_origin, weights=self.he_length, minlength=self.n_nodes + 1)[:self.n_nodes]
-        return 2.0 * self.area / np.maximum(perimeter, 1.0)
+        return (2.0 * self.area / np.maximum(perimeter, 1.0)).astype(np.float32)  # held with the graph: kept small
 
     @cached_property
     def backdrop(self) -> np.ndarray:

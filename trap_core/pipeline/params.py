@@ -199,14 +199,18 @@ class TrapParams:
         return None if not self.max_side or max(width, height) == self.max_side else self.max_side
 
     @property
+    def reads_camera(self) -> bool:
+        """Whether tracking reads the camera's motion: the robust method, where a rule needs it
+        (``min_speed``, ``grow``, ``still_regions``)."""
+        return self.method == "robust" and bool(self.min_speed > 0 or self.grow or self.still_regions)
+
+    @property
     def reads_image_steps(self) -> bool:
-        """Whether tracking reads the camera's steps between frames from the images: the robust
-        method's camera motion (``image_motion``), which it reads only where a rule needs the camera
-        (``min_speed``, ``grow``, ``still_regions``). The graph stage reads each step with the frame
-        (2.5 ms a frame, README "Camera motion from the images") only then: the paper's method
-        never looks at it."""
-        return self.method == "robust" and self.image_motion and bool(self.min_speed > 0 or self.grow
-                                                                      or self.still_regions)
+        """Whether tracking reads the camera's steps between frames from the images: where it
+        reads the camera at all (:attr:`reads_camera`), with ``image_motion``. The graph stage
+        reads each step with the frame (2.5 ms a frame, README "Camera motion from the images")
+        only then: the paper's method never looks at it."""
+        return self.reads_camera and self.image_motion
 
     def as_dict(self) -> dict[str, Any]:
         return dataclasses.asdict(self)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -43,12 +44,18 @@ class ClusterTracks:
             self._built[cluster] = self._build(cluster)
         return replace(self._built[cluster], track_id=track_id)
 
+    @cached_property
+    def _edge_pixel(self) -> float:
+        """Frame pixels per pixel of the segmentation's size, for edge lines (0: they count like
+        any region); the same for every cluster's track."""
+        robust_lines = self.params.method == "robust" and self.params.edge_lines
+        return self.params.working_pixel(*self.graphs[0].frame_size) if robust_lines else 0.0
+
     def _build(self, cluster: int) -> Track:
         params = self.params
         robust = params.method == "robust"
         lag = max(1, params.tau // 5)  # frames either side where a region is looked for again
-        # frame pixels per pixel of the segmentation's size, for edge lines (0: they count like any region)
-        pixel = params.working_pixel(*self.graphs[0].frame_size) if robust and params.edge_lines else 0.0
+        pixel = self._edge_pixel
         built = build_track(self.mined, self.labels, cluster, 0, self.graphs, params.core_share if robust else 0.0,
                             pixel)
         if robust and params.still_regions and params.core_share > 0:

@@ -68,7 +68,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     cut_short = mined.freq_st() < miner.freq_st_min  # kept only as the video's ends cut them (robust)
     transforms = None
     free, free_observed = mined, observed
-    if robust and (params.min_speed > 0 or params.grow or params.still_regions):
+    if params.reads_camera:
         free = without_backdrop(mined, graphs)  # where the backdrop is, occurrences placed and boxed without it
         free_observed = observed if free is mined else observed_paths(free)
         image_steps = np.stack([graph.camera_step for graph in graphs]) if params.reads_image_steps else None

@@ -93,5 +93,5 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
             if np.array_equal(grown, searched[i]):
                 break
             searched[i] = grown
-            boxes[i] = here.nodes_box(moving, pixel, around=boxes[i])
+            boxes[i] = here.nodes_box(moving, pixel, around=boxes[i]) if pixel > 0 else grown
     return dataclasses.replace(track, boxes=boxes)

@@ -74,8 +74,12 @@ def test_ids_continue_across_chunks_and_boxes_are_final_while_reading(monkeypatc
 
 
 def test_one_chunk_is_the_whole_video_and_chunks_keep_the_objects() -> None:
+    """Chunks of 150 frames, so the second chunk is tracked on its own from frame 150. The
+    scene's objects are told apart within either chunk alone (with seed 2, two look-alikes
+    travel side by side through the second chunk's first 80 frames: that chunk alone takes them
+    for one object, whatever the stitching does)."""
     params = TrapParams(segmentation="colour", chunk=0)
-    graphs, truth = synthetic_graphs(SceneConfig(width=320, height=240, frames=300, seed=2, exits=False), params)
+    graphs, truth = synthetic_graphs(SceneConfig(width=320, height=240, frames=300, seed=5, exits=False), params)
     whole = track(graphs, params)
     tracker = ChunkedTracker(params, len(graphs))
     for graph in graphs:

@@ -867,7 +867,8 @@ def test_a_sparse_track_grows_against_its_box_interpolated_through_short_gaps() 
 
 
 def test_a_still_region_the_object_crosses_leaves_its_box_and_its_parts_stay() -> None:
-    """Most faces on the object's edge hold the block it crosses: the core box becomes the block."""
+    """Every face of the object (spots on its edges, none inside) holds the block it crosses: the
+    core box becomes the block."""
     from trap_core.clustering import build_track
     from trap_core.mining import MiningParams, mine
     from trap_core.robust import drop_still_regions
@@ -877,10 +878,9 @@ def test_a_still_region_the_object_crosses_leaves_its_box_and_its_parts_stay() -
         rgb = np.full((120, 240, 3), 40, np.uint8)
         rgb[30:80, 90:150] = (0, 0, 200)  # a still block of about the object's size
         x = 40 + 4 * t
-        rgb[45:65, x:x + 35] = (0, 200, 0)  # the object: a body with spots on its edges and inside
+        rgb[45:65, x:x + 35] = (0, 200, 0)  # the object: a body with spots on its edges
         rgb[45:51, x + 4:x + 10], rgb[45:51, x + 10:x + 16] = (200, 0, 0), (200, 200, 0)
         rgb[59:65, x + 20:x + 26], rgb[59:65, x + 26:x + 32] = (0, 200, 200), (200, 0, 200)
-        rgb[53:57, x + 4:x + 8], rgb[53:57, x + 8:x + 12] = (250, 250, 250), (120, 60, 0)
         graphs.append(frame_graph(rgb, params))
         truth.append((x, 45, 35, 20))
     result = mine(graphs, MiningParams(eps=40.0, tau=5, freq_st_min=10, max_faces=3, linking="assignment", reach=0.8))
@@ -1848,6 +1848,32 @@ def test_core_regions_leave_out_the_backdrop_every_face_of_the_object_holds() ->
     box_regions, _ = core_regions(graph, face_sets, 0.5, np.ones(len(on_object)))
     assert np.array_equal(box_regions, [1, 2, 3])
     assert np.array_equal(graph.nodes_box(box_regions), [40, 40, 20, 25])
+
+
+@pytest.mark.parametrize("short_lifetime, core", [(50, [1, 2]), (160, [1, 2, 3, 4])])
+def test_core_regions_count_each_occurrence_by_its_patterns_lifetime(short_lifetime, core) -> None:
+    """One frame of a cluster: the object's long-lived pattern holds its two regions, a short-lived
+    one two background regions beside it (one place: they touch). The short one's regions are
+    not core; as long-lived as the object's, they are (each region is held once either way)."""
+    from trap_core.clustering import core_regions
+    from trap_core.rag import build_plane_graph
+    labels = np.zeros((100, 100), dtype=np.int32)
+    labels[40:60, 40:50] = 1   # the object: regions 1, 2
+    labels[40:60, 50:60] = 2
+    labels[40:60, 60:80] = 3   # background cells beside it: regions 3, 4
+    labels[60:80, 60:80] = 4
+    graph = build_plane_graph(labels, 5, np.zeros((100, 100, 3), np.uint8))
+    inner = np.flatnonzero(~graph.outer_faces())
+
+    def faces_within(nodes: list[int]) -> np.ndarray:
+        return np.array([f for f in inner if np.isin(graph.face_nodes(f), [0, *nodes]).all()
+                         and np.isin(graph.face_nodes(f), nodes).any()])
+    on_object, beside = faces_within([1, 2]), faces_within([3, 4])
+    face_sets = np.full((2, max(on_object.size, beside.size)), -1)
+    face_sets[0, :on_object.size], face_sets[1, :beside.size] = on_object, beside
+    assert np.array_equal(graph.sets_nodes(face_sets)[0], [0, 1, 2, 0, 3, 4])
+    box_regions, _ = core_regions(graph, face_sets, 0.8, np.array([160, short_lifetime]))
+    assert np.array_equal(box_regions, core)
 
 
 def test_discs_on_a_cat_cut_by_its_backdrop_only_are_tracks() -> None:

@@ -196,15 +196,23 @@ def core_regions(graph: PlaneGraph, face_sets: np.ndarray, share: float,
     surrounds the first (:func:`build_track`); the second are the object itself, whatever else
     its patterns hold.
 
-    Only the occurrences in the track's place count (:func:`one_place`): where the cluster is
-    in two places at once, the one of its longest-lived patterns (``lifetimes``). The backdrop
-    (:attr:`PlaneGraph.backdrop`) is never a core region: over a plain scene every face of an
-    object holds it, and the box would be the whole view.
+    Each occurrence counts as many times as its pattern occurs in the whole video
+    (``lifetimes``): where a short-lived pattern of the cluster holds other regions than the
+    object's long-lived one (a background region beside the object, whose barycentre moves
+    while the object covers it bit by bit), those regions are held by few occurrence-lifetimes
+    and stay out, however few patterns the frame has. Only the occurrences in the track's
+    place count (:func:`one_place`): where the cluster is in two places at once, the one of its
+    longest-lived patterns. The backdrop (:attr:`PlaneGraph.backdrop`) is never a core region:
+    over a plain scene every face of an object holds it, and the box would be the whole view.
     """
     nodes, ends = graph.sets_nodes(face_sets)
     nodes, ends, lifetimes = _sets_without_backdrop(graph, nodes, ends, lifetimes)
     kept = _place_kept(graph, nodes, ends, lifetimes, share)
-    return _most_held(nodes if kept is None else nodes[np.repeat(kept, np.diff(ends, prepend=0))], share)
+    weights = np.repeat(lifetimes.astype(float), np.diff(ends, prepend=0))
+    if kept is not None:
+        in_place = np.repeat(kept, np.diff(ends, prepend=0))
+        nodes, weights = nodes[in_place], weights[in_place]
+    return _most_held(nodes, share, weights)
 
 
 def _sets_without_backdrop(graph: PlaneGraph, nodes: np.ndarray, ends: np.ndarray,
@@ -252,10 +260,11 @@ def _place_kept(graph: PlaneGraph, nodes: np.ndarray, ends: np.ndarray, lifetime
     return place == int(np.argmax(np.bincount(place, weights=lifetimes)))
 
 
-def _most_held(nodes: np.ndarray, share: float) -> tuple[np.ndarray, np.ndarray]:
+def _most_held(nodes: np.ndarray, share: float, weights: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Nodes held by at least ``share`` times as many node sets as the most held node, and the
-    most held ones; ``nodes`` are the sets' nodes one set after the other (each set's distinct)."""
-    seen = np.bincount(nodes)
+    most held ones; ``nodes`` are the sets' nodes one set after the other (each set's distinct).
+    With ``weights`` (per entry of ``nodes``, at least 1), a set counts its weight, not one."""
+    seen = np.bincount(nodes, weights=weights)
     return np.flatnonzero(seen >= max(share * seen.max(), 1)), np.flatnonzero(seen == seen.max())
 
 

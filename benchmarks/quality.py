@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import argparse
 import hashlib
+import inspect
 import pickle
 import re
 import time
@@ -40,6 +41,7 @@ from trap_core.clustering import Track
 from trap_core.outputs import Thumbnails, contact_sheet, track_timeline
 from trap_core.pipeline import GRAPH_STAGE, TrapParams, synthetic_graphs, track
 from trap_core.rag.serialize import MAGIC as GRAPH_MAGIC
+from trap_core.robust.image_steps import image_step
 from trap_core.synthetic import PRESETS, SceneConfig, render
 
 ANALOGUES = [(f"{preset} seed {seed}", dict(seed=seed, **PRESETS[preset]), "colour")
@@ -308,6 +310,26 @@ SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": 
         "photos": PHOTOS, "drawn": DRAWN, "random": RANDOM, "after": AFTER}
 
 
+def _code_digest(function, seen: set | None = None) -> str:
+    """Digest of what ``function`` computes with: its source, the values of the upper-case
+    constants it names, and the same of the trap_core functions it calls, down the calls.
+    Cached graphs hold the camera's steps read from the frames, which no parameter controls:
+    a change to how they are read must not leave the old ones in use."""
+    seen = set() if seen is None else seen
+    seen.add(function)
+    parts = [inspect.getsource(function)]
+    for name in function.__code__.co_names:
+        value = function.__globals__.get(name)
+        if name.isupper() and isinstance(value, (int, float, str, tuple)):
+            parts.append(f"{name}={value!r}")
+        elif inspect.isfunction(value) and value.__module__.startswith("trap_core") and value not in seen:
+            parts.append(_code_digest(value, seen))
+    return hashlib.sha256("\n".join(parts).encode()).hexdigest()[:12]
+
+
+IMAGE_STEP_CODE = _code_digest(image_step)
+
+
 def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None = None,
             ) -> tuple[list, list[dict[int, tuple]]]:
     """Plane graphs and ground-truth boxes of one video, from the cache when there.
@@ -318,10 +340,11 @@ def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None 
     used = [k for k in GRAPH_STAGE if k != "threads" and (segmentation == "felzenszwalb" or k not in FELZENSZWALB_ONLY)]
     graph_overrides = {k: v for k, v in (overrides or {}).items() if k in used}
     params = TrapParams.from_mapping({"segmentation": segmentation, **graph_overrides})
-    # Every graph parameter the segmentation uses is in the key, defaults too, and the graphs'
-    # format: graphs cached under other defaults, or lacking what the format now holds, are not
-    # taken for these.
-    key = f"{GRAPH_MAGIC.decode()}_" + "_".join(f"{k}{v}" for k, v in sorted(scene.items())) + f"_{segmentation}"
+    # Every graph parameter the segmentation uses is in the key, defaults too, the graphs'
+    # format and the code that reads the camera's steps: graphs cached under other defaults,
+    # lacking what the format now holds or with steps read otherwise, are not taken for these.
+    key = (f"{GRAPH_MAGIC.decode()}_steps{IMAGE_STEP_CODE}_" + "_".join(f"{k}{v}" for k, v in sorted(scene.items()))
+           + f"_{segmentation}")
     key += "".join(f"_{k}{getattr(params, k)}" for k in used if k != "segmentation")
     if len(key) > MAX_KEY:  # a file name is at most 255 bytes: long keys keep a readable head and a digest
         key = f"{key[:MAX_KEY - 17]}_{hashlib.sha256(key.encode()).hexdigest()[:16]}"

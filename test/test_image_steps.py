@@ -133,3 +133,26 @@ def test_objects_over_a_smooth_background_are_tracked_with_the_camera_read_from_
     assert errors(camera_transforms(paths, len(graphs), np.stack([g.camera_step for g in graphs]))).max() < 0.05
     objects = match_objects([boxes_by_frame(t) for t in track(graphs, params).tracks], truth)
     assert [(p >= 0.9, r >= 0.9) for _, p, r in objects] == [(True, True)] * 2
+
+
+def test_cached_graphs_are_keyed_by_the_code_that_reads_the_steps(monkeypatch) -> None:
+    """The quality benchmark caches graphs with their camera steps: a constant of the step reader,
+    or of the fit it calls, changes the key; one it does not use leaves it."""
+    import importlib.util
+    from pathlib import Path
+
+    import trap_core.robust.camera as camera
+    import trap_core.robust.image_steps as image_steps
+    path = Path(__file__).resolve().parents[1] / "benchmarks" / "quality.py"
+    spec = importlib.util.spec_from_file_location("quality_benchmark", path)
+    quality = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(quality)
+    before = quality._code_digest(image_step)
+    assert before == quality.IMAGE_STEP_CODE
+    monkeypatch.setattr(camera, "HOP_SHARE", 0.9)  # the tracker's, named by nothing the reader calls
+    assert quality._code_digest(image_step) == before
+    monkeypatch.setattr(image_steps, "FLOW_WINDOW", image_steps.FLOW_WINDOW + 2)
+    assert quality._code_digest(image_step) != before
+    monkeypatch.undo()
+    monkeypatch.setattr(camera, "AGREE_PX", camera.AGREE_PX * 2)  # the fit's, which the reader calls
+    assert quality._code_digest(image_step) != before

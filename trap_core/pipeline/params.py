@@ -103,7 +103,8 @@ class TrapParams:
     rejoin: bool = _p(True, "robust: rejoin fragments of one object across occlusions and exits")
     rejoin_similarity: float = _p(0.3, "robust: share of a fragment (counted in occurrences) whose structures the "
                                        "other also has, needed to rejoin them")
-    core_share: float = _p(0.8, "robust: track box from regions in at least this share of the occurrences; 0 = all")
+    core_share: float = _p(0.8, "robust: track box from regions in at least this share of the occurrences, each "
+                                "counted by its pattern's lifetime; 0 = all")
     still_regions: bool = _p(True, "robust: a core region found again, tau/5 frames before and after, at most half as "
                                    "far from where the camera's motion puts it as from where the track's does is "
                                    "background the object crosses: it leaves the box (the region most occurrences "

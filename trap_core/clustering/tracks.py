@@ -208,9 +208,10 @@ def core_regions(graph: PlaneGraph, face_sets: np.ndarray, share: float,
     nodes, ends = graph.sets_nodes(face_sets)
     nodes, ends, lifetimes = _sets_without_backdrop(graph, nodes, ends, lifetimes)
     kept = _place_kept(graph, nodes, ends, lifetimes, share)
-    weights = np.repeat(lifetimes.astype(float), np.diff(ends, prepend=0))
+    sizes = np.diff(ends, prepend=0)
+    weights = np.repeat(lifetimes.astype(float), sizes)
     if kept is not None:
-        in_place = np.repeat(kept, np.diff(ends, prepend=0))
+        in_place = np.repeat(kept, sizes)
         nodes, weights = nodes[in_place], weights[in_place]
     return _most_held(nodes, share, weights)
 

@@ -82,10 +82,7 @@ class PlaneGraph:
         whole = self._box(nodes, around)
         if pixel <= 0:
             return whole
-        thin = self.thickness[nodes] < EDGE_LINE * pixel
-        if not thin.any():
-            return whole
-        outer = self._outer_lines(nodes, thin, around)
+        outer = self.outer_lines(nodes, pixel, around)
         if not outer.any() or (around is None and outer.all()):
             return whole
         inner = self._box(nodes[~outer], around)
@@ -102,11 +99,7 @@ class PlaneGraph:
         inside the box ``around`` (x, y, w, h) has a colour nearer their own than any that is.
         Smoothing blends each side of a sharp edge with the other: the line on the object's side
         keeps most of the object's colour, the one outside most of the ground's."""
-        return self._outer_lines(nodes, self.thickness[nodes] < EDGE_LINE * pixel, around)
-
-    def _outer_lines(self, nodes: np.ndarray, thin: np.ndarray, around: np.ndarray | None) -> np.ndarray:
-        """:meth:`outer_lines` where ``thin`` marks the lines among ``nodes``: those whose region
-        nearest in colour (:attr:`nearest_in_colour`) is neither one of ``nodes`` nor inside ``around``."""
+        thin = self.thickness[nodes] < EDGE_LINE * pixel
         outer = thin.copy()
         nearest = self.nearest_in_colour[nodes[thin]]
         free = (nearest >= 0) & ~np.isin(nearest, nodes)

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Benchmark: tracking quality of the defaults on synthetic videos with ground truth.
 
-Seventeen sets of videos (721 frames but in the last two; ``trap_core.synthetic.SceneConfig``):
+Eighteen sets of videos (721 frames but in the last three; ``trap_core.synthetic.SceneConfig``):
 the Anim analogues (both presets, seeds 0-2), the variants looked at while the robust rules were
-chosen ("tuned"), variants never looked at while choosing them ("held-out"), frames larger than the working size ("larger",
-segmented scaled down to ``max_side``), a camera that also turns and zooms ("camera"), objects of
+chosen ("tuned"), variants never looked at while choosing them ("held-out"), frames larger than
+the working size ("larger", segmented scaled down to ``max_side``), a camera that also turns and zooms ("camera"), objects of
 other shapes ("shapes": tall, round, several shapes at once), a mix of all of these made later, on
 which the last three rules were chosen ("recent"), another made after those ("fresh"), one with
 more look-alikes ("newest") on which the three rules after those were checked, one made after
@@ -14,13 +14,13 @@ rule ("blind"), other scenes: photographs as backgrounds ("photos"), and one dra
 over cells, a road and photographs after every rule but the two look-alike ones, the first of
 which was made on it ("drawn"), one drawn at random over every background and size, segmented with
 Felzenszwalb ("random"), and one more drawn so once the camera's motion was read from the images
-("after"). Prints, per video, the tracks
-found without being told the number of objects, each object's box precision/recall (%) and
-MOTA / IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90 or
-better and the mean MOTA / IDF1, and that share over all sets run; with ``--pictures DIR``, each
-video's tracks as a contact sheet and a timeline. Graphs are cached (``--cache``), so a second
-run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,random,after] [-p name:=value]``
+("after"), and one whose frames are JPEG-compressed, as a CompressedImage topic brings them
+("jpeg"). Prints, per video, the tracks found without being told the number of objects, each
+object's box precision/recall (%) and MOTA / IDF1 / HOTA; per set, the mean precision x recall,
+the share of objects at 90/90 or better and the mean MOTA / IDF1, and that share over all sets
+run; with ``--pictures DIR``, each video's tracks as a contact sheet and a timeline. Graphs are
+cached (``--cache``), so a second run only tracks.
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,after,jpeg] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
@@ -302,12 +302,34 @@ AFTER = [  # drawn at random (generator 20261127, as RANDOM was drawn) after the
      dict(seed=1110, identical=True, objects=5, shape="disc", background="camera", width=960, height=540,
           frames=450, illumination=0.1, zoom=0.15, rotation=15.0, object_scale=0.8), "felzenszwalb"),
 ]
+JPEG = [  # every frame compressed as JPEG (quality 90) and decoded, as a CompressedImage topic brings it
+    # (session 39); the mean-colour rule of the segmentation (mean_gap) was chosen on this set
+    ("anim1, JPEG", dict(seed=31, frames=450, compressed="jpeg", **PRESETS["anim1"]), "felzenszwalb"),
+    ("anim2, noise 1, JPEG", dict(seed=32, frames=450, compressed="jpeg", **{**PRESETS["anim2"], "noise": 1.0}),
+     "felzenszwalb"),
+    ("distinct, mixed shapes, noise 3, JPEG", dict(seed=33, frames=450, compressed="jpeg", noise=3.0, shape="mixed"),
+     "felzenszwalb"),
+    ("identical, 4 objects, 960x540, noise 2, JPEG",
+     dict(seed=34, frames=450, compressed="jpeg", identical=True, noise=2.0, width=960, height=540, objects=4),
+     "felzenszwalb"),
+    ("distinct, person, noise 1, grass, JPEG",
+     dict(seed=35, frames=450, compressed="jpeg", shape="person", noise=1.0, background="grass"), "felzenszwalb"),
+    ("identical, disc, 800x600, noise 1.5, gravel, JPEG",
+     dict(seed=36, frames=450, compressed="jpeg", identical=True, shape="disc", noise=1.5, background="gravel",
+          width=800, height=600), "felzenszwalb"),
+    ("distinct, car, 4 objects, zoom 10 %, turn 10 deg, noise 2, road, JPEG",
+     dict(seed=37, frames=450, compressed="jpeg", shape="car", noise=2.0, background="road", objects=4, zoom=0.1,
+          rotation=10.0), "felzenszwalb"),
+    ("distinct, mixed shapes, 960x540, noise 1, chelsea, JPEG",
+     dict(seed=38, frames=450, compressed="jpeg", shape="mixed", noise=1.0, background="chelsea", width=960,
+          height=540), "felzenszwalb"),
+]
 MAX_KEY = 200  # characters of a cached video's file name (scenes with many settings have longer keys)
-FELZENSZWALB_ONLY = ("k", "max_regions", "sigma", "min_size", "threshold", "connectivity")  # no effect on exact-colour regions
+FELZENSZWALB_ONLY = ("k", "max_regions", "sigma", "min_size", "threshold", "connectivity", "mean_gap")  # no effect on exact-colour regions
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
         "shapes": SHAPES, "recent": RECENT, "fresh": FRESH,
         "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST, "unseen": UNSEEN, "blind": BLIND,
-        "photos": PHOTOS, "drawn": DRAWN, "random": RANDOM, "after": AFTER}
+        "photos": PHOTOS, "drawn": DRAWN, "random": RANDOM, "after": AFTER, "jpeg": JPEG}
 
 
 def _code_digest(function, seen: set | None = None) -> str:
@@ -352,18 +374,26 @@ def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None 
     if path.exists():
         with open(path, "rb") as f:
             return pickle.load(f)
-    graphs, truth = synthetic_graphs(SceneConfig(**scene), params)
+    config, compressed = _scene_config(scene)
+    graphs, truth = synthetic_graphs(config, params, compressed)
     cache.mkdir(parents=True, exist_ok=True)
     with open(path, "wb") as f:
         pickle.dump((graphs, truth), f)
     return graphs, truth
 
 
+def _scene_config(scene: dict) -> tuple[SceneConfig, str | None]:
+    """The video of a set's ``scene`` and how its frames are compressed (its ``compressed`` key)."""
+    settings = dict(scene)
+    compressed = settings.pop("compressed", None)
+    return SceneConfig(**settings), compressed
+
+
 def _pictures(scene: dict, tracks: list[Track], n_frames: int, stem: Path) -> None:
     """Contact sheet (``stem``_tracks.png: a dozen frames with the track boxes) and timeline
     (``stem``_timeline.png) of one video's tracks; the frames are rendered again."""
     thumbnails = Thumbnails(n_frames)
-    for frame in render(SceneConfig(**scene)):
+    for frame in render(_scene_config(scene)[0]):
         thumbnails(frame.rgb)
     stem.parent.mkdir(parents=True, exist_ok=True)
     contact_sheet(thumbnails.images, tracks, thumbnails.scale, f"{stem}_tracks.png")

@@ -412,3 +412,25 @@ def test_the_line_outside_a_sharp_edge_does_not_widen_the_box() -> None:
     assert not outer[np.isin(held, labels[[30, 40, 49], [40, 20, 40]])].any()  # the inner lines and the body
     assert graph.nodes_box(held[outer], pixel=1.0, around=np.array(rectangle)).tolist() == rectangle
     assert graph.nodes_box(held[outer], around=np.array(rectangle)).tolist() == [19.0, 29.0, 42.0, 22.0]
+
+
+def test_a_coloured_object_in_a_jpeg_frame_keeps_out_of_a_textured_ground() -> None:
+    """JPEG halves the colour resolution: a person's coloured torso over grey grass meets it along
+    a colour ramp. Climbing it one small step at a time, the torso's region takes in a large part
+    of the ground; with mean_gap 5, no torso region reaches 100 px beyond its person."""
+    from trap_core.bagio import compress_image, decode_compressed
+    from trap_core.pipeline import TrapParams, first_frame_setup
+    frame = next(iter(render(SceneConfig(seed=35, shape="person", background="grass", noise=1.0, frames=1))))
+    rgb = decode_compressed("jpeg", compress_image(frame.rgb, "jpeg"))
+
+    def torso_overreach(mean_gap: float) -> list[int]:
+        params = first_frame_setup(rgb, TrapParams(mean_gap=mean_gap))[0]
+        labels = felzenszwalb(rgb, k=params.k, sigma=params.sigma, min_size=params.min_size, mean_gap=mean_gap)[0]
+        reach = []
+        for x, y, w, h in frame.boxes:
+            ys, xs = np.nonzero(labels == labels[y + h // 3, x + w // 2])
+            reach.append(max(x - xs.min(), y - ys.min(), xs.max() + 1 - x - w, ys.max() + 1 - y - h))
+        return reach
+
+    assert max(torso_overreach(0.0)) > 100
+    assert max(torso_overreach(5.0)) < 100

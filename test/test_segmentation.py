@@ -44,7 +44,7 @@ def test_size_mode_region_counts_match_skimage_on_natural_images() -> None:
         image = _natural(name)
         smoothed = ndi.gaussian_filter(image.astype(np.float32), sigma=[0.8, 0.8, 0], mode="reflect")
         for k in (100, 300, 1000):
-            ours += len(np.unique(felzenszwalb_kernel(smoothed, float(k), 20, True, 8)))
+            ours += len(np.unique(felzenszwalb_kernel(smoothed, float(k), 20, True, 8, 0.0)))
             theirs += skimage_felzenszwalb(image, scale=k, sigma=0.8, min_size=20).max() + 1
     assert abs(ours / theirs - 1) < 0.06, (ours, theirs)
 
@@ -61,6 +61,20 @@ def test_constant_threshold_is_independent_of_region_size() -> None:
         assert felzenszwalb(image, k=15, sigma=0, min_size=0)[1] == 2
     assert felzenszwalb(tiny, k=200, sigma=0, min_size=0, threshold="size")[1] == 1
     assert felzenszwalb(big, k=200, sigma=0, min_size=0, threshold="size")[1] == 2
+
+
+def test_mean_gap_stops_a_region_climbing_a_colour_ramp() -> None:
+    """Grey and magenta joined by a ramp of steps under k: the paper's rule merges them one step at a
+    time; with mean_gap, the two sides' mean colours are too far apart, whatever the steps."""
+    grey, magenta = np.array([100.0, 100.0, 100.0]), np.array([160.0, 100.0, 160.0])  # 85 units apart
+    ramp = np.linspace(0, 1, 16)[:, None] * (magenta - grey) + grey  # steps of 5.7 units
+    row = np.vstack([np.repeat(grey[None], 40, axis=0), ramp, np.repeat(magenta[None], 40, axis=0)])
+    image = np.repeat(row[None], 30, axis=0).round().astype(np.uint8)
+    assert felzenszwalb(image, k=7, sigma=0, min_size=20)[1] == 1
+    labels, n = felzenszwalb(image, k=7, sigma=0, min_size=20, mean_gap=5)
+    assert n == 2 and labels[0, 0] != labels[0, -1]
+    assert felzenszwalb(image, k=7, sigma=0, min_size=20, mean_gap=5, threshold="size")[1] == felzenszwalb(
+        image, k=7, sigma=0, min_size=20, threshold="size")[1]  # size threshold: k is not in colour units
 
 
 def test_regions_are_four_connected_and_compact() -> None:
@@ -99,6 +113,7 @@ def test_two_threads_give_the_same_labels() -> None:
 @pytest.mark.parametrize("kwargs,pattern", [
     (dict(threshold="median"), "threshold must be"), (dict(k=-1), "k >= 0"),
     (dict(sigma=float("nan")), "sigma >= 0"), (dict(connectivity=6), "connectivity"),
+    (dict(mean_gap=-1.0), "mean_gap >= 0"),
 ])
 def test_bad_parameters(kwargs: dict, pattern: str) -> None:
     with pytest.raises(SegmentationError, match=pattern):

@@ -14,6 +14,7 @@ from concurrent.futures import Future, ThreadPoolExecutor
 import cv2
 import numpy as np
 
+from trap_core.bagio import compress_image, decode_compressed
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, build_plane_graph
 from trap_core.robust.image_steps import image_step
@@ -144,7 +145,7 @@ def _regions(small: np.ndarray, params: TrapParams) -> tuple[np.ndarray, int]:
     if params.segmentation == "colour":
         return colour_components(small)
     return felzenszwalb(small, k=params.k, sigma=params.sigma, min_size=params.min_size,
-                        threshold=params.threshold, connectivity=params.connectivity)
+                        threshold=params.threshold, connectivity=params.connectivity, mean_gap=params.mean_gap)
 
 
 def _in_frame_pixels(graph: PlaneGraph, scale_x: float, scale_y: float) -> PlaneGraph:
@@ -208,9 +209,12 @@ def graphs_of(frames: Iterable[np.ndarray], params: TrapParams,
         raise failure
 
 
-def synthetic_graphs(config: SceneConfig, params: TrapParams) -> tuple[list[PlaneGraph], list[dict[int, tuple]]]:
+def synthetic_graphs(config: SceneConfig, params: TrapParams, compressed: str | None = None,
+                     ) -> tuple[list[PlaneGraph], list[dict[int, tuple]]]:
     """Plane graphs of a synthetic video and each object's ground-truth boxes (frame -> x, y, w,
-    h): what tests and quality benchmarks track and score, without writing a bag."""
+    h): what tests and quality benchmarks track and score, without writing a bag. ``compressed``
+    (``jpeg`` or ``png``): each frame is compressed and decoded first, as a bag of
+    ``sensor_msgs/CompressedImage`` would bring it."""
     truth: list[dict[int, tuple]] = [{} for _ in range(config.objects)]
 
     def frames() -> Iterator[np.ndarray]:
@@ -218,6 +222,7 @@ def synthetic_graphs(config: SceneConfig, params: TrapParams) -> tuple[list[Plan
             for obj, box in enumerate(frame.boxes):
                 if box:
                     truth[obj][frame.index] = box
-            yield frame.rgb
+            yield frame.rgb if compressed is None else decode_compressed(compressed, compress_image(frame.rgb,
+                                                                                                    compressed))
 
     return list(graphs_of(frames(), params)), truth

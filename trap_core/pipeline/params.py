@@ -12,8 +12,8 @@ from trap_core.segmentation import THRESHOLD_MODES
 SEGMENTATIONS = ("felzenszwalb", "colour")
 METHODS = ("paper", "robust")
 # Which node needs which parameters (the segmentation node: stages 1-2; the mining node: 3-7).
-GRAPH_STAGE = ("segmentation", "k", "max_regions", "sigma", "min_size", "threshold", "connectivity", "max_side",
-               "colour_bins", "contact_tolerance", "threads")
+GRAPH_STAGE = ("segmentation", "k", "max_regions", "sigma", "min_size", "threshold", "connectivity", "mean_gap",
+               "max_side", "colour_bins", "contact_tolerance", "threads")
 # What the segmentation node also reads: whether tracking will take the camera's steps from the
 # images (:attr:`TrapParams.reads_image_steps`); the graph stage reads them only then.
 IMAGE_STEP_STAGE = ("method", "image_motion", "min_speed", "grow", "still_regions")
@@ -41,6 +41,11 @@ class TrapParams:
     min_size: int = _p(20, "regions smaller than this (pixels) are merged")
     threshold: str = _p("constant", "constant (paper: tau = k) or size (original: tau = k/|C|)")
     connectivity: int = _p(4, "pixel connectivity of the segmentation: 4 or 8")
+    mean_gap: float = _p(0.0, "Felzenszwalb, constant threshold: regions of min_size pixels or more merge only if "
+                              "their mean colours are at most this times k apart, so a region does not climb the "
+                              "colour ramps that JPEG or video compression leave along edges into a differently "
+                              "coloured neighbour (ours; 5 for compressed footage: README, compressed frames); "
+                              "0 = off (paper)")
     max_side: int = _p(640, "px: frames are segmented with their longer side scaled to this (down, or up for smaller "
                             "frames), so objects get as many regions as at the size the defaults were made for; "
                             "results stay in the frame's pixels (ours); 0 = each frame at its own size")
@@ -153,7 +158,8 @@ class TrapParams:
             (self.threshold in THRESHOLD_MODES, f"threshold must be one of {THRESHOLD_MODES}"),
             (self.method in METHODS, f"method must be one of {METHODS}"),
             (self.linkage in LINKAGES, f"linkage must be one of {LINKAGES}"),
-            (self.k >= 0 and self.sigma >= 0 and self.min_size >= 0, "k, sigma and min_size must be >= 0"),
+            (self.k >= 0 and self.sigma >= 0 and self.min_size >= 0 and self.mean_gap >= 0,
+             "k, sigma, min_size and mean_gap must be >= 0"),
             (self.max_regions == 0 or self.max_regions >= 16, "max_regions must be 0 (off) or at least 16"),
             (self.connectivity in (4, 8), "connectivity must be 4 or 8"),
             (1 <= self.colour_bins <= 256, "colour_bins must be within 1..256"),

@@ -11,7 +11,7 @@ THRESHOLD_MODES = ("constant", "size")
 
 
 def felzenszwalb(rgb: np.ndarray, k: float = 7.0, sigma: float = 0.8, min_size: int = 20,
-                 threshold: str = "constant", connectivity: int = 4) -> tuple[np.ndarray, int]:
+                 threshold: str = "constant", connectivity: int = 4, mean_gap: float = 0.0) -> tuple[np.ndarray, int]:
     """Segment an RGB frame into regions (TRAP_SPEC section 1).
 
     Parameters
@@ -32,6 +32,13 @@ def felzenszwalb(rgb: np.ndarray, k: float = 7.0, sigma: float = 0.8, min_size: 
         Pixel graph of the segmentation. 4 (default) is the plane graph's adjacency and the
         faster; 8 is what skimage and cv2.ximgproc use (regions that then touch only
         diagonally are split, as the plane graph needs 4-connected regions).
+    mean_gap : float
+        ``threshold='constant'`` only (ours): two regions of at least ``min_size`` pixels merge
+        only if their mean colours are at most ``mean_gap * k`` apart; 0 disables it (the
+        paper's rule alone). Smoothing, and the halved colour resolution of JPEG and video
+        codecs, leave colour ramps along edges: each step is small, and a region merges along
+        one step at a time, its largest step ``Int`` growing as it goes, until it is merged
+        with a differently coloured neighbour (a coloured object with a grey textured ground).
 
     Returns
     -------
@@ -54,14 +61,16 @@ def felzenszwalb(rgb: np.ndarray, k: float = 7.0, sigma: float = 0.8, min_size: 
         raise SegmentationError(f"threshold must be one of {THRESHOLD_MODES}, not {threshold!r}")
     if connectivity not in (4, 8):
         raise SegmentationError(f"connectivity must be 4 or 8, not {connectivity}")
-    if not (np.isfinite(k) and k >= 0 and np.isfinite(sigma) and sigma >= 0 and min_size >= 0):
-        raise SegmentationError(f"need k >= 0, sigma >= 0, min_size >= 0 (got k={k}, sigma={sigma}, "
-                                f"min_size={min_size})")
+    if not (np.isfinite(k) and k >= 0 and np.isfinite(sigma) and sigma >= 0 and min_size >= 0
+            and np.isfinite(mean_gap) and mean_gap >= 0):
+        raise SegmentationError(f"need k >= 0, sigma >= 0, min_size >= 0, mean_gap >= 0 (got k={k}, "
+                                f"sigma={sigma}, min_size={min_size}, mean_gap={mean_gap})")
     if rgb.ndim != 3 or rgb.shape[0] == 0 or rgb.shape[1] == 0:
         raise SegmentationError(f"expected an (H, W, 3) image, got shape {rgb.shape}")
     image = rgb.astype(np.float32)
     if sigma > 0:
         image = cv2.GaussianBlur(image, (0, 0), sigmaX=sigma, sigmaY=sigma, borderType=cv2.BORDER_REFLECT)
-    raw = felzenszwalb_kernel(image, float(k), int(min_size), threshold == "size", int(connectivity))
+    gap = float(mean_gap * k) if threshold == "constant" else 0.0
+    raw = felzenszwalb_kernel(image, float(k), int(min_size), threshold == "size", int(connectivity), gap)
     # 4-connected merging yields 4-connected regions; 8-connected ones may touch only diagonally.
     return compact_labels(raw) if connectivity == 4 else relabel_4connected(raw)

@@ -44,8 +44,8 @@ class TrapParams:
     mean_gap: float = _p(0.0, "Felzenszwalb, constant threshold: regions of min_size pixels or more merge only if "
                               "their mean colours are at most this times k apart, so a region does not climb the "
                               "colour ramps that JPEG or video compression leave along edges into a differently "
-                              "coloured neighbour (ours; 5 for compressed footage: README, compressed frames); "
-                              "0 = off (paper)")
+                              "coloured neighbour (ours; 5 for compressed footage over textured ground: README, "
+                              "compressed frames); 0 = off (paper)")
     max_side: int = _p(640, "px: frames are segmented with their longer side scaled to this (down, or up for smaller "
                             "frames), so objects get as many regions as at the size the defaults were made for; "
                             "results stay in the frame's pixels (ours); 0 = each frame at its own size")

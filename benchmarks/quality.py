@@ -4,13 +4,13 @@
 Eighteen sets of videos (721 frames but in the last three; ``trap_core.synthetic.SceneConfig``):
 the Anim analogues (both presets, seeds 0-2), the variants looked at while the robust rules were
 chosen ("tuned"), variants never looked at while choosing them ("held-out"), frames larger than
-the working size ("larger", segmented scaled down to ``max_side``), a camera that also turns and zooms ("camera"), objects of
-other shapes ("shapes": tall, round, several shapes at once), a mix of all of these made later, on
-which the last three rules were chosen ("recent"), another made after those ("fresh"), one with
-more look-alikes ("newest") on which the three rules after those were checked, one made after
-those ("untouched"), one made after every rule but the usual size from clear frames, which was
-made on it ("latest"), one made after that ("unseen"), one drawn at random after every
-rule ("blind"), other scenes: photographs as backgrounds ("photos"), and one drawn at random
+the working size ("larger", segmented scaled down to ``max_side``), a camera that also turns and
+zooms ("camera"), objects of other shapes ("shapes": tall, round, several shapes at once), a mix
+of all of these made later, on which the last three rules were chosen ("recent"), another made
+after those ("fresh"), one with more look-alikes ("newest") on which the three rules after those
+were checked, one made after those ("untouched"), one made after every rule but the usual size
+from clear frames, which was made on it ("latest"), one made after that ("unseen"), one drawn at
+random after every rule ("blind"), other scenes: photographs as backgrounds ("photos"), and one drawn at random
 over cells, a road and photographs after every rule but the two look-alike ones, the first of
 which was made on it ("drawn"), one drawn at random over every background and size, segmented with
 Felzenszwalb ("random"), and one more drawn so once the camera's motion was read from the images
@@ -303,7 +303,7 @@ AFTER = [  # drawn at random (generator 20261127, as RANDOM was drawn) after the
           frames=450, illumination=0.1, zoom=0.15, rotation=15.0, object_scale=0.8), "felzenszwalb"),
 ]
 JPEG = [  # every frame compressed as JPEG (quality 90) and decoded, as a CompressedImage topic brings it
-    # (session 39); the mean-colour rule of the segmentation (mean_gap) was chosen on this set
+    # (session 39); made for the segmentation's mean-colour rule (mean_gap), which stays off
     ("anim1, JPEG", dict(seed=31, frames=450, compressed="jpeg", **PRESETS["anim1"]), "felzenszwalb"),
     ("anim2, noise 1, JPEG", dict(seed=32, frames=450, compressed="jpeg", **{**PRESETS["anim2"], "noise": 1.0}),
      "felzenszwalb"),
@@ -325,7 +325,8 @@ JPEG = [  # every frame compressed as JPEG (quality 90) and decoded, as a Compre
           height=540), "felzenszwalb"),
 ]
 MAX_KEY = 200  # characters of a cached video's file name (scenes with many settings have longer keys)
-FELZENSZWALB_ONLY = ("k", "max_regions", "sigma", "min_size", "threshold", "connectivity", "mean_gap")  # no effect on exact-colour regions
+# Graph parameters with no effect on exact-colour regions.
+FELZENSZWALB_ONLY = ("k", "max_regions", "sigma", "min_size", "threshold", "connectivity", "mean_gap")
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
         "shapes": SHAPES, "recent": RECENT, "fresh": FRESH,
         "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST, "unseen": UNSEEN, "blind": BLIND,

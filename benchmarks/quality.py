@@ -304,25 +304,20 @@ AFTER = [  # drawn at random (generator 20261127, as RANDOM was drawn) after the
 ]
 JPEG = [  # every frame compressed as JPEG (quality 90) and decoded, as a CompressedImage topic brings it
     # (session 39); made for the segmentation's mean-colour rule (mean_gap), which stays off
-    ("anim1, JPEG", dict(seed=31, frames=450, compressed="jpeg", **PRESETS["anim1"]), "felzenszwalb"),
-    ("anim2, noise 1, JPEG", dict(seed=32, frames=450, compressed="jpeg", **{**PRESETS["anim2"], "noise": 1.0}),
-     "felzenszwalb"),
-    ("distinct, mixed shapes, noise 3, JPEG", dict(seed=33, frames=450, compressed="jpeg", noise=3.0, shape="mixed"),
-     "felzenszwalb"),
-    ("identical, 4 objects, 960x540, noise 2, JPEG",
-     dict(seed=34, frames=450, compressed="jpeg", identical=True, noise=2.0, width=960, height=540, objects=4),
-     "felzenszwalb"),
-    ("distinct, person, noise 1, grass, JPEG",
-     dict(seed=35, frames=450, compressed="jpeg", shape="person", noise=1.0, background="grass"), "felzenszwalb"),
-    ("identical, disc, 800x600, noise 1.5, gravel, JPEG",
-     dict(seed=36, frames=450, compressed="jpeg", identical=True, shape="disc", noise=1.5, background="gravel",
-          width=800, height=600), "felzenszwalb"),
-    ("distinct, car, 4 objects, zoom 10 %, turn 10 deg, noise 2, road, JPEG",
-     dict(seed=37, frames=450, compressed="jpeg", shape="car", noise=2.0, background="road", objects=4, zoom=0.1,
-          rotation=10.0), "felzenszwalb"),
-    ("distinct, mixed shapes, 960x540, noise 1, chelsea, JPEG",
-     dict(seed=38, frames=450, compressed="jpeg", shape="mixed", noise=1.0, background="chelsea", width=960,
-          height=540), "felzenszwalb"),
+    (f"{label}, JPEG", dict(frames=450, compressed="jpeg", **scene), "felzenszwalb") for label, scene in [
+        ("anim1", dict(seed=31, **PRESETS["anim1"])),
+        ("anim2, noise 1", dict(seed=32, **{**PRESETS["anim2"], "noise": 1.0})),
+        ("distinct, mixed shapes, noise 3", dict(seed=33, noise=3.0, shape="mixed")),
+        ("identical, 4 objects, 960x540, noise 2",
+         dict(seed=34, identical=True, noise=2.0, width=960, height=540, objects=4)),
+        ("distinct, person, noise 1, grass", dict(seed=35, shape="person", noise=1.0, background="grass")),
+        ("identical, disc, 800x600, noise 1.5, gravel",
+         dict(seed=36, identical=True, shape="disc", noise=1.5, background="gravel", width=800, height=600)),
+        ("distinct, car, 4 objects, zoom 10 %, turn 10 deg, noise 2, road",
+         dict(seed=37, shape="car", noise=2.0, background="road", objects=4, zoom=0.1, rotation=10.0)),
+        ("distinct, mixed shapes, 960x540, noise 1, chelsea",
+         dict(seed=38, shape="mixed", noise=1.0, background="chelsea", width=960, height=540)),
+    ]
 ]
 MAX_KEY = 200  # characters of a cached video's file name (scenes with many settings have longer keys)
 # Graph parameters with no effect on exact-colour regions.

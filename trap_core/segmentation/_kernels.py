@@ -93,13 +93,13 @@ def _mean_distance_squared(colour_sum: np.ndarray, size: np.ndarray, ra: int, rb
 
 @nb.njit(cache=True, nogil=True)
 def felzenszwalb_kernel(image: np.ndarray, k: float, min_size: int, size_threshold: bool,
-                        connectivity: int, mean_gap: float) -> np.ndarray:
+                        connectivity: int, max_mean_distance: float) -> np.ndarray:
     """Graph-based segmentation (TRAP_SPEC section 1) of a smoothed float32 image.
 
     Merge rule: ``w <= min(Int(C1) + tau(C1), Int(C2) + tau(C2))`` with ``tau = k / |C|``
-    (``size_threshold``) or ``tau = k``; where ``mean_gap`` > 0, two components of at least
-    ``min_size`` pixels also need mean colours at most ``mean_gap`` apart. Returns a (H, W) int32
-    label image (not compacted).
+    (``size_threshold``) or ``tau = k``; where ``max_mean_distance`` > 0 (colour units), two
+    components of at least ``min_size`` pixels also need mean colours at most that far apart.
+    Returns a (H, W) int32 label image (not compacted).
     """
     height, width, channels = image.shape
     a, b, w = _sort_edges(*_edges(image, connectivity))
@@ -107,9 +107,10 @@ def felzenszwalb_kernel(image: np.ndarray, k: float, min_size: int, size_thresho
     parent = np.arange(n, dtype=np.int32)
     size = np.ones(n, dtype=np.int32)
     internal = np.zeros(n, dtype=np.float32)
-    colour_sum = image.reshape(n, channels).astype(np.float64) if mean_gap > 0 else np.zeros((0, channels))
+    guarded = max_mean_distance > 0
+    colour_sum = image.reshape(n, channels).astype(np.float64) if guarded else np.zeros((0, channels))
     k32 = np.float32(k)
-    gap_squared = mean_gap * mean_gap
+    distance_squared = max_mean_distance * max_mean_distance
     for idx in range(w.size):
         ra = _find(parent, a[idx])
         rb = _find(parent, b[idx])
@@ -119,14 +120,14 @@ def felzenszwalb_kernel(image: np.ndarray, k: float, min_size: int, size_thresho
         tau_a = k32 / size[ra] if size_threshold else k32
         tau_b = k32 / size[rb] if size_threshold else k32
         if weight <= min(internal[ra] + tau_a, internal[rb] + tau_b):
-            if mean_gap > 0 and size[ra] >= min_size and size[rb] >= min_size and _mean_distance_squared(
-                    colour_sum, size, ra, rb) > gap_squared:
+            if guarded and size[ra] >= min_size and size[rb] >= min_size and _mean_distance_squared(
+                    colour_sum, size, ra, rb) > distance_squared:
                 continue
             if size[ra] < size[rb]:
                 ra, rb = rb, ra
             parent[rb] = ra
             size[ra] += size[rb]
-            if mean_gap > 0:
+            if guarded:
                 for c in range(channels):
                     colour_sum[ra, c] += colour_sum[rb, c]
             internal[ra] = max(weight, internal[ra], internal[rb])

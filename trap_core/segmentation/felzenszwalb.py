@@ -70,7 +70,8 @@ def felzenszwalb(rgb: np.ndarray, k: float = 7.0, sigma: float = 0.8, min_size: 
     image = rgb.astype(np.float32)
     if sigma > 0:
         image = cv2.GaussianBlur(image, (0, 0), sigmaX=sigma, sigmaY=sigma, borderType=cv2.BORDER_REFLECT)
-    gap = float(mean_gap * k) if threshold == "constant" else 0.0
-    raw = felzenszwalb_kernel(image, float(k), int(min_size), threshold == "size", int(connectivity), gap)
+    max_mean_distance = float(mean_gap * k) if threshold == "constant" else 0.0
+    raw = felzenszwalb_kernel(image, float(k), int(min_size), threshold == "size", int(connectivity),
+                              max_mean_distance)
     # 4-connected merging yields 4-connected regions; 8-connected ones may touch only diagonally.
     return compact_labels(raw) if connectivity == 4 else relabel_4connected(raw)

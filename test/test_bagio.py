@@ -8,8 +8,8 @@ import cv2
 import numpy as np
 import pytest
 
-from trap_core.bagio import (SUPPORTED_ENCODINGS, BagError, decode_image, encode_image, image_topics,
-                             open_image_stream, write_image_bag)
+from trap_core.bagio import (SUPPORTED_ENCODINGS, BagError, SampleRange, decode_compressed, decode_image,
+                             encode_image, image_topics, open_image_stream, write_image_bag)
 
 
 def _frames(count: int = 4, height: int = 24, width: int = 32) -> list[np.ndarray]:
@@ -48,7 +48,12 @@ def test_mono_encodings_give_grey_rgb(tmp_path: Path, encoding: str) -> None:
         for frame, original in zip(stream, frames):
             grey = cv2.cvtColor(original, cv2.COLOR_RGB2GRAY)
             for channel in range(3):
-                np.testing.assert_array_equal(frame.rgb[..., channel], grey)
+                np.testing.assert_array_equal(frame.rgb[..., channel], frame.rgb[..., 0])
+            if "16" in encoding:  # the first frame's greys, widened a little, span the 8 bits
+                gain, residual = _linear_fit(frame.rgb[..., 0], grey)
+                assert gain >= 1 and residual <= 1, (gain, residual)
+            else:
+                np.testing.assert_array_equal(frame.rgb[..., 0], grey)
 
 
 @pytest.mark.parametrize("encoding", [f"bayer_{p}{bits}" for p in ("rggb", "bggr", "gbrg", "grbg") for bits in (8, 16)])
@@ -252,8 +257,11 @@ def test_decode_handles_padded_rows_and_big_endian() -> None:
     padded = np.zeros((2, 12), dtype=np.uint8)
     padded[:, :9] = rgb.reshape(2, 9)
     np.testing.assert_array_equal(decode_image("rgb8", 2, 3, 12, padded.ravel()), rgb)
-    big = np.array([[0x1234, 0xFF00]], dtype=">u2").view(np.uint8).ravel()
-    np.testing.assert_array_equal(decode_image("mono16", 1, 2, 4, big, is_bigendian=True)[..., 0], [[0x12, 0xFF]])
+    samples = np.array([[0x0100, 0x1234, 0xFF00]])
+    big, little = (samples.astype(order).view(np.uint8).ravel() for order in (">u2", "<u2"))
+    np.testing.assert_array_equal(decode_image("mono16", 1, 3, 6, big, is_bigendian=True),
+                                  decode_image("mono16", 1, 3, 6, little))
+    assert decode_image("mono16", 1, 3, 6, big, is_bigendian=True)[0, :, 0].tolist() == [1, 18, 254]
 
 
 def test_encoding_list_is_covered() -> None:
@@ -310,3 +318,67 @@ def test_run_bag_reports_the_k_fitted_to_a_textured_first_frame(tmp_path: Path, 
     used = json.loads((tmp_path / "out" / "summary.json").read_text())["parameters"]
     assert used["k"] == fitted_to_regions(frames[0], params).k > params.k and used["max_regions"] == 60
     assert f"k raised from 7 to {used['k']:g}" in capsys.readouterr().err
+
+
+def _linear_fit(decoded: np.ndarray, original: np.ndarray) -> tuple[float, float]:
+    """Gain of the least-squares line from ``original`` to ``decoded`` samples, and its largest residual."""
+    x, y = original.astype(float).ravel(), decoded.astype(float).ravel()
+    gain, offset = np.polyfit(x, y, 1)
+    return gain, float(np.abs(y - (gain * x + offset)).max())
+
+
+@pytest.mark.parametrize("encoding", ["mono16", "rgb16", "bayer_rggb16"])
+@pytest.mark.parametrize("bits", [10, 12, 14])
+def test_cameras_writing_fewer_bits_in_16_bit_samples_keep_their_contrast(tmp_path: Path, encoding: str,
+                                                                           bits: int) -> None:
+    # Keeping the high byte made a 12-bit camera's 0..4095 a frame of greys 0..15: nothing to segment.
+    frames = _frames()
+    write_image_bag(tmp_path / "bag", frames, encoding=encoding, sample_bits=bits)
+    with open_image_stream(tmp_path / "bag") as stream:
+        for frame, original in zip(stream, frames):
+            if encoding == "mono16":
+                original = cv2.cvtColor(original, cv2.COLOR_RGB2GRAY)[..., None].repeat(3, axis=2)
+            decoded, original = _block_centres(frame.rgb), _block_centres(original)
+            gain, residual = _linear_fit(decoded, original)
+            assert gain >= 0.75 and residual <= 3, (gain, residual)
+
+
+def test_a_narrow_band_of_16_bit_samples_is_spread_over_the_greys() -> None:
+    # what a thermal camera writes: a scene within 7000..8000 of 0..65535
+    band = (7000 + _frames(count=1)[0][..., 0].astype(np.uint16) * 4).astype("<u2")
+    height, width = band.shape
+    grey = decode_image("16uc1", height, width, width * 2, band.view(np.uint8).ravel())[..., 0]
+    assert int(grey.max()) - int(grey.min()) >= 150
+
+
+def test_a_stream_maps_16_bit_samples_alike_in_every_frame(tmp_path: Path) -> None:
+    # A region keeps its colour (and its label) from frame to frame: the mapping is the first frame's,
+    # later samples outside its range are clipped.
+    first = np.full((24, 32, 3), 100, dtype=np.uint8)
+    first[:, 16:] = 150
+    later = first.copy()
+    later[:8] = 0
+    later[16:] = 255
+    write_image_bag(tmp_path / "bag", [first, later], encoding="rgb16", sample_bits=12)
+    with open_image_stream(tmp_path / "bag") as stream:
+        decoded_first, decoded_later = (frame.rgb for frame in stream)
+    np.testing.assert_array_equal(decoded_later[8:16], decoded_first[8:16])
+    assert decoded_first[0, 16, 0] - decoded_first[0, 0, 0] > 50  # 100 vs 150 over 0..4095, stretched
+    assert decoded_later[0].max() == 0 and decoded_later[-1].min() == 255
+
+
+def test_16_bit_png_keeps_its_contrast() -> None:
+    original = _frames(count=1)[0]
+    sample_range = SampleRange()
+    twelve_bit = np.rint(cv2.cvtColor(original, cv2.COLOR_RGB2BGR) * (4095 / 255)).astype(np.uint16)
+    ok, png = cv2.imencode(".png", twelve_bit)
+    assert ok
+    decoded = decode_compressed("png", png.ravel(), sample_range)
+    gain, residual = _linear_fit(decoded, original)
+    assert gain >= 0.75 and residual <= 1, (gain, residual)
+    assert sample_range.high is not None and sample_range.high < 65535 / 8
+
+
+def test_sample_bits_out_of_range_are_refused() -> None:
+    with pytest.raises(BagError, match="sample_bits"):
+        encode_image(_frames(count=1)[0], "mono16", sample_bits=17)

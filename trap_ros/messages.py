@@ -16,7 +16,7 @@ from std_msgs.msg import ColorRGBA, Header
 from vision_msgs.msg import BoundingBox2D, Detection2D, Detection2DArray, ObjectHypothesis, ObjectHypothesisWithPose
 from visualization_msgs.msg import Marker, MarkerArray
 
-from trap_core.bagio import decode_image
+from trap_core.bagio import SampleRange, decode_image
 from trap_core.clustering import Track
 from trap_core.outputs import track_colour
 from trap_core.rag import PlaneGraph, graph_from_bytes, graph_to_bytes
@@ -33,9 +33,10 @@ def image_message(rgb: np.ndarray, header: Header) -> Image:
     return message
 
 
-def image_rgb(message: Image) -> np.ndarray:
+def image_rgb(message: Image, sample_range: SampleRange | None = None) -> np.ndarray:
+    """RGB of an image message; ``sample_range``: the topic's, for 16-bit encodings."""
     return decode_image(message.encoding, message.height, message.width, message.step,
-                        np.asarray(message.data, dtype=np.uint8), bool(message.is_bigendian))
+                        np.asarray(message.data, dtype=np.uint8), bool(message.is_bigendian), sample_range)
 
 
 def graph_message(graph: PlaneGraph, header: Header) -> CompressedImage:

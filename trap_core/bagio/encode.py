@@ -40,11 +40,18 @@ _WIDE = {"rgb16": "rgb8", "bgr16": "bgr8", "rgba16": "rgba8", "bgra16": "bgra8",
          "16uc1": "8uc1", **{name[:-1] + "16": name for name in _BAYER_TILES}}
 
 
-def encode_image(rgb: np.ndarray, encoding: str) -> tuple[np.ndarray, int]:
-    """Return ``(payload bytes as uint8 array, step)`` of ``rgb`` in a ROS raw encoding."""
+def encode_image(rgb: np.ndarray, encoding: str, sample_bits: int = 16) -> tuple[np.ndarray, int]:
+    """Return ``(payload bytes as uint8 array, step)`` of ``rgb`` in a ROS raw encoding.
+
+    16-bit encodings spread the 8-bit samples over ``sample_bits`` significant bits (16: the full
+    range; 10, 12 or 14: what many cameras write in 16-bit samples).
+    """
     if encoding in _WIDE:
+        if not 8 <= sample_bits <= 16:
+            raise BagError(f"sample_bits must be within 8..16, not {sample_bits}")
         narrow, _ = encode_image(rgb, _WIDE[encoding])
-        wide = narrow.astype("<u2") * 257  # 8 bits spread over the full 16-bit range
+        top = (1 << sample_bits) - 1
+        wide = np.rint(narrow.astype(np.float64) * (top / 255)).astype("<u2")
         payload = wide.view(np.uint8).reshape(rgb.shape[0], -1)
         return payload.reshape(-1), payload.shape[1]
     if encoding == "rgb8":

@@ -16,7 +16,7 @@ from types import TracebackType
 import numpy as np
 from rosbags.highlevel import AnyReader
 
-from trap_core.bagio.decode import decode_compressed, decode_image
+from trap_core.bagio.decode import SampleRange, decode_compressed, decode_image
 from trap_core.bagio.errors import BagError
 
 IMAGE_TYPES = ("sensor_msgs/msg/Image", "sensor_msgs/msg/CompressedImage")
@@ -107,6 +107,7 @@ class ImageStream:
     def __init__(self, path: str | Path, topic: str | None = None) -> None:
         self.path = Path(path)
         self._bag = _OpenBag(self.path)
+        self._sample_range = SampleRange()  # 16-bit samples: one mapping for the whole topic
         try:
             self.topic, self.msgtype, self.count = self._choose_topic(topic)
         except BagError:
@@ -147,10 +148,10 @@ class ImageStream:
     def _decode(self, message: object, index: int) -> np.ndarray:
         try:
             if self.msgtype.endswith("CompressedImage"):
-                rgb = decode_compressed(message.format, message.data)
+                rgb = decode_compressed(message.format, message.data, self._sample_range)
             else:
                 rgb = decode_image(message.encoding, message.height, message.width, message.step,
-                                   message.data, bool(message.is_bigendian))
+                                   message.data, bool(message.is_bigendian), self._sample_range)
             if min(rgb.shape[:2]) < MIN_SIDE:
                 raise BagError(f"image of size {rgb.shape[1]}x{rgb.shape[0]} is too small to track "
                                f"(at least {MIN_SIDE} px a side)")

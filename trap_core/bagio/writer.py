@@ -19,7 +19,7 @@ STORAGES = ("mcap", "sqlite3", "ros1")
 def write_image_bag(path: str | Path, frames: Iterable[np.ndarray], *, topic: str = "/camera/image_raw",
                     encoding: str = "rgb8", compressed: str | None = None, storage: str = "mcap",
                     fps: float = 25.0, frame_id: str = "camera", start_ns: int = 1_700_000_000_000_000_000,
-                    ) -> int:
+                    sample_bits: int = 16) -> int:
     """Write ``frames`` (RGB uint8) to a new bag and return the number written.
 
     Parameters
@@ -38,6 +38,8 @@ def write_image_bag(path: str | Path, frames: Iterable[np.ndarray], *, topic: st
         Container; mcap chunks are zstd-compressed (readable by Foxglove and ros2 bag).
     fps : float
         Frame rate that sets the header stamps and the log times.
+    sample_bits : int
+        16-bit encodings: significant bits of each sample (:func:`encode_image`).
     """
     if storage not in STORAGES:
         raise BagError(f"unknown storage {storage!r} (one of {', '.join(STORAGES)})")
@@ -68,7 +70,7 @@ def write_image_bag(path: str | Path, frames: Iterable[np.ndarray], *, topic: st
             if compressed:
                 message = types[image_type](header=header, format=compressed, data=compress_image(rgb, compressed))
             else:
-                data, step = encode_image(rgb, encoding)
+                data, step = encode_image(rgb, encoding, sample_bits)
                 message = types[image_type](header=header, height=rgb.shape[0], width=rgb.shape[1],
                                             encoding=encoding, is_bigendian=0, step=step, data=data)
             writer.write(connection, stamp_ns, serialize(message, image_type))

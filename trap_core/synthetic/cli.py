@@ -31,6 +31,9 @@ def build_parser() -> argparse.ArgumentParser:
                              "markings; or a scikit-image photograph the camera pans over (other scenes)")
     parser.add_argument("--no-exits", action="store_true", help="no object leaves the field of view")
     parser.add_argument("--encoding", choices=SUPPORTED_ENCODINGS, default="rgb8")
+    parser.add_argument("--sample-bits", dest="sample_bits", type=int, choices=range(8, 17), default=16,
+                        metavar="8..16", help="16-bit encodings: significant bits of each sample (12: a 12-bit "
+                                              "camera's 0..4095 in 16-bit samples)")
     parser.add_argument("--compressed", choices=("jpeg", "png"), help="write sensor_msgs/CompressedImage")
     parser.add_argument("--storage", choices=STORAGES, default="mcap")
     parser.add_argument("--topic", default="/camera/image_raw")
@@ -43,7 +46,8 @@ def _main() -> int:
     options = {k: v for k, v in vars(args).items() if k in fields}
     cfg = SceneConfig(**{**options, **PRESETS[args.preset], "exits": not args.no_exits})
     bag, gt = write_synthetic(cfg, args.bag, encoding=args.encoding, compressed=args.compressed,
-                              storage=args.storage, topic=args.topic, progress=True)
+                              storage=args.storage, topic=args.topic, progress=True,
+                              sample_bits=args.sample_bits)
     print(f"wrote {cfg.frames} frames to {bag}, ground truth {gt}")
     return 0
 

@@ -354,8 +354,7 @@ def test_a_narrow_band_of_16_bit_samples_is_spread_over_the_greys() -> None:
 def test_a_stream_maps_16_bit_samples_alike_in_every_frame(tmp_path: Path) -> None:
     # A region keeps its colour (and its label) from frame to frame: the mapping is the first frame's,
     # later samples outside its range are clipped.
-    first = np.full((24, 32, 3), 100, dtype=np.uint8)
-    first[:, 16:] = 150
+    first = np.repeat(np.linspace(100, 150, 32).round().astype(np.uint8)[None, :, None], 24, axis=0).repeat(3, axis=2)
     later = first.copy()
     later[:8] = 0
     later[16:] = 255
@@ -363,8 +362,19 @@ def test_a_stream_maps_16_bit_samples_alike_in_every_frame(tmp_path: Path) -> No
     with open_image_stream(tmp_path / "bag") as stream:
         decoded_first, decoded_later = (frame.rgb for frame in stream)
     np.testing.assert_array_equal(decoded_later[8:16], decoded_first[8:16])
-    assert decoded_first[0, 16, 0] - decoded_first[0, 0, 0] > 50  # 100 vs 150 over 0..4095, stretched
+    assert decoded_first[0, -1, 0] - decoded_first[0, 0, 0] > 100  # 100 vs 150 of 0..255 (in 12 bits), stretched
     assert decoded_later[0].max() == 0 and decoded_later[-1].min() == 255
+
+
+def test_a_stream_that_starts_black_takes_its_range_from_the_first_frame_with_content(tmp_path: Path) -> None:
+    frames = _frames(count=2)
+    write_image_bag(tmp_path / "bag", [np.zeros_like(frames[0]), *frames], encoding="rgb16", sample_bits=12)
+    with open_image_stream(tmp_path / "bag") as stream:
+        black, *decoded = (frame.rgb for frame in stream)
+    assert black.max() == 0
+    for frame, original in zip(decoded, frames):
+        gain, residual = _linear_fit(_block_centres(frame), _block_centres(original))
+        assert gain >= 0.75 and residual <= 3, (gain, residual)
 
 
 def test_16_bit_png_keeps_its_contrast() -> None:

@@ -40,10 +40,13 @@ SUPPORTED_ENCODINGS: tuple[str, ...] = tuple(sorted(_LAYOUT))
 # is read (a few dead or saturated pixels would otherwise set it).
 RANGE_MARGIN = 0.25
 RANGE_TAIL = 0.001
+# Distinct sample values a frame needs to fix a stream's range: fewer, it is blank (a camera that
+# starts black or saturated), and the range it would fix would clip every later frame.
+RANGE_LEVELS = 16
 
 
 class SampleRange:
-    """How the 16-bit samples of one stream become 8-bit ones: fixed on its first 16-bit frame.
+    """How the 16-bit samples of one stream become 8-bit ones: fixed on its first frame with content.
 
     Cameras write 10, 12 or 14 significant bits in 16-bit samples, and thermal cameras a narrow
     band of the range; keeping the high byte (cv_bridge's conversion) leaves such frames nearly
@@ -51,7 +54,8 @@ class SampleRange:
     ``RANGE_TAIL`` samples), widened by ``RANGE_MARGIN`` of itself on each side within 0..65535,
     is mapped linearly onto 0..255; full-range samples keep their high byte (rounded). It is
     fixed, not read again from each frame, so that a region keeps its colour (and its label)
-    from frame to frame; later samples outside it are clipped.
+    from frame to frame; later samples outside it are clipped. Blank frames (fewer than
+    ``RANGE_LEVELS`` distinct values) are mapped by their own range and fix nothing.
     """
 
     def __init__(self) -> None:
@@ -60,9 +64,12 @@ class SampleRange:
 
     def to_8bit(self, samples: np.ndarray) -> np.ndarray:
         """``samples`` (uint16, any shape) as uint8, the range set from them if it is not yet."""
-        if self.low is None or self.high is None:
-            self.low, self.high = _widened_range(samples)
-        scaled = (samples.astype(np.float32) - self.low) * np.float32(255.0 / (self.high - self.low))
+        low, high = self.low, self.high
+        if low is None or high is None:
+            low, high = _widened_range(samples)
+            if np.count_nonzero(np.bincount(samples.ravel(), minlength=1)) >= RANGE_LEVELS:
+                self.low, self.high = low, high
+        scaled = (samples.astype(np.float32) - low) * np.float32(255.0 / (high - low))
         return np.clip(np.rint(scaled), 0, 255).astype(np.uint8)
 
 

@@ -2,7 +2,8 @@
 
 Every later stage works on ``(H, W, 3)`` uint8 RGB, whatever the camera wrote; decoding
 validates sizes first so that a malformed message is a :class:`BagError`, not a crash.
-16-bit samples are brought to 8 bits by a :class:`SampleRange` fixed on a stream's first frame.
+16-bit samples are brought to 8 bits by a :class:`SampleRange`, fixed on a stream's first frame
+with content.
 """
 from __future__ import annotations
 

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import shutil
+import warnings
 from pathlib import Path
 
 import cv2
@@ -242,8 +243,8 @@ def test_corrupt_ros1_header(tmp_path: Path) -> None:
 
 def test_decode_rejects_bad_headers() -> None:
     payload = np.zeros(12, dtype=np.uint8)
-    with pytest.raises(BagError, match="unsupported image encoding '32fc1'"):
-        decode_image("32fc1", 2, 2, 4, payload)
+    with pytest.raises(BagError, match="unsupported image encoding '16uc2'"):  # two channels: no colours
+        decode_image("16uc2", 2, 2, 4, payload)
     with pytest.raises(BagError, match="height x step needs 24"):
         decode_image("rgb8", 2, 4, 12, payload)
     with pytest.raises(BagError, match="step 4 is shorter than a row"):
@@ -280,9 +281,9 @@ def test_unsupported_encoding_in_bag(tmp_path: Path) -> None:
     with Writer(tmp_path / "depth", version=9) as writer:
         connection = writer.add_connection("/cam", Image.__msgtype__, typestore=store)
         message = Image(header=Header(stamp=Time(sec=1, nanosec=0), frame_id="c"), height=2, width=2,
-                        encoding="32FC1", is_bigendian=0, step=8, data=np.zeros(16, dtype=np.uint8))
+                        encoding="16UC2", is_bigendian=0, step=8, data=np.zeros(16, dtype=np.uint8))
         writer.write(connection, 1, store.serialize_cdr(message, Image.__msgtype__))
-    with pytest.raises(BagError, match="frame 0 of /cam: unsupported image encoding '32FC1'"):
+    with pytest.raises(BagError, match="frame 0 of /cam: unsupported image encoding '16UC2'"):
         with open_image_stream(tmp_path / "depth") as stream:
             list(stream)
 
@@ -392,3 +393,81 @@ def test_16_bit_png_keeps_its_contrast() -> None:
 def test_sample_bits_out_of_range_are_refused() -> None:
     with pytest.raises(BagError, match="sample_bits"):
         encode_image(_frames(count=1)[0], "mono16", sample_bits=17)
+
+
+def _grey(rgb: np.ndarray) -> np.ndarray:
+    return cv2.cvtColor(rgb, cv2.COLOR_RGB2GRAY)
+
+
+@pytest.mark.parametrize("encoding", ["8sc1", "16sc1", "32sc1", "32fc1", "64fc1", "16uc3", "16sc4", "32fc3",
+                                      "64fc4"])
+def test_signed_and_floating_point_samples_keep_their_contrast(tmp_path: Path, encoding: str) -> None:
+    # Depth, thermal and scientific cameras write these; they were refused as unknown encodings.
+    frames = _frames()
+    write_image_bag(tmp_path / "bag", frames, encoding=encoding.upper())
+    with open_image_stream(tmp_path / "bag") as stream:
+        for frame, original in zip(stream, frames):
+            if encoding.endswith("c1"):
+                original = _grey(original)[..., None].repeat(3, axis=2)
+            gain, residual = _linear_fit(frame.rgb, original)
+            assert gain >= 0.65 and residual <= 1, (gain, residual)  # at least 1 / (1 + 2 RANGE_MARGIN)
+
+
+def test_floating_point_depth_without_readings() -> None:
+    # REP 117: NaN is no reading, +Inf too far, -Inf too near; an all-NaN first frame fixes nothing.
+    # Decoding must not leave NaN to the cast to uint8 (undefined: a RuntimeWarning, made an error here).
+    warnings.simplefilter("error", RuntimeWarning)
+    metres = 0.5 + _grey(_frames(count=1)[0]).astype(np.float32) / 50
+    metres[:8, :8], metres[8:16, :8], metres[16:, :8] = np.nan, np.inf, -np.inf
+    height, width = metres.shape
+    sample_range = SampleRange()
+    blank = decode_image("32FC1", height, width, width * 4, np.full_like(metres, np.nan).view(np.uint8).ravel(),
+                         sample_range=sample_range)
+    assert blank.max() == 0 and sample_range.low is None
+    grey = decode_image("32FC1", height, width, width * 4, metres.view(np.uint8).ravel(),
+                        sample_range=sample_range)[..., 0]
+    assert grey[:8, :8].max() == 0 and grey[8:16, :8].min() == 255 and grey[16:, :8].max() == 0
+    gain, residual = _linear_fit(grey[:, 8:], metres[:, 8:])
+    assert gain >= 0.75 * 50 and residual <= 1, (gain, residual)
+
+
+@pytest.mark.parametrize("codec", ["png", "rvl"])
+@pytest.mark.parametrize("encoding", ["16UC1", "32FC1"])
+def test_compressed_depth_images(tmp_path: Path, encoding: str, codec: str) -> None:
+    # compressed_depth_image_transport's messages: a 12-byte header, then png or rvl (32FC1: quantised inverse depth)
+    frames = _frames()
+    write_image_bag(tmp_path / "bag", frames, compressed=f"{encoding}; compressedDepth {codec}")
+    with open_image_stream(tmp_path / "bag") as stream:
+        for frame, original in zip(stream, frames):
+            gain, residual = _linear_fit(frame.rgb[..., 0], _grey(original))
+            assert gain >= 0.75 and residual <= 1, (gain, residual)
+
+
+def test_rvl_bit_layout() -> None:
+    # [0, 0, 5, 0]: 2 zeros (nibble 2), 1 non-zero (1), 5 as zigzag 10 = 3-bit groups 010, 001 lowest
+    # first (nibbles A, 1), 1 zero (1), no non-zero (0); nibbles fill a word from its top.
+    from trap_core.bagio._rvl import rvl_decode, rvl_encode
+    samples, complete = rvl_decode(np.array([0x21A11000], dtype=np.uint32), 4)
+    assert complete and samples.tolist() == [0, 0, 5, 0]
+    assert rvl_encode(samples).tolist() == [0x21A11000]
+    rng = np.random.default_rng(3)
+    depth = rng.integers(0, 65536, 5000).astype(np.uint16) * (rng.random(5000) < 0.6)
+    decoded, complete = rvl_decode(rvl_encode(depth), depth.size)
+    assert complete
+    np.testing.assert_array_equal(decoded, depth)
+
+
+def test_corrupt_compressed_depth_is_refused() -> None:
+    from trap_core.bagio import compress_image
+    rvl = compress_image(_frames(count=1)[0], "16UC1; compressedDepth rvl")
+    huge = rvl.copy()
+    huge[12:20] = 255
+    cases = [(rvl[:12], "no image after its header"), (rvl[:-8], "end before its 32x24 pixels"),
+             (huge, "rvl size 4294967295x4294967295"), (rvl[:12].copy(), "no image")]
+    for data, message in cases:
+        with pytest.raises(BagError, match=message):
+            decode_compressed("16UC1; compressedDepth rvl", data)
+    with pytest.raises(BagError, match="no 16-bit single-channel png"):
+        decode_compressed("16UC1; compressedDepth png", rvl)
+    with pytest.raises(BagError, match="'16UC1; compressedDepth zstd' is not supported"):
+        decode_compressed("16UC1; compressedDepth zstd", rvl)

@@ -2,14 +2,15 @@
 
 Every later stage works on ``(H, W, 3)`` uint8 RGB, whatever the camera wrote; decoding
 validates sizes first so that a malformed message is a :class:`BagError`, not a crash.
-16-bit samples are brought to 8 bits by a :class:`SampleRange`, fixed on a stream's first frame
-with content.
+Wider samples (16 or 32 bits, signed, floating point: high-bit-depth, thermal and depth cameras)
+are brought to 8 bits by a :class:`SampleRange`, fixed on a stream's first frame with content.
 """
 from __future__ import annotations
 
 import cv2
 import numpy as np
 
+from trap_core.bagio.compressed_depth import decode_compressed_depth, is_compressed_depth
 from trap_core.bagio.errors import BagError
 
 # OpenCV names Bayer patterns by the second row's first two pixels, ROS by the first row's;
@@ -20,43 +21,53 @@ _BAYER_TO_RGB = {
                           ("gbrg", cv2.COLOR_BayerGR2RGB), ("grbg", cv2.COLOR_BayerGB2RGB))
     for bits in (8, 16)
 }
-# encoding -> (channels, bytes per channel, conversion to RGB after 16-bit samples are brought to
-# 8 bits; None: already RGB). "8uc3"/"8uc4" are taken as BGR(A), as cv_bridge does; ROS's
-# "yuv422" is UYVY and "yuv422_yuy2" YUYV; "nv21" is a Y plane then interleaved V, U at half size.
+# OpenCV's generic types: samples of each depth, their channels taken as grey, BGR or BGRA (as
+# cv_bridge does); two channels have no colour meaning and are refused.
+_CV_DEPTHS = {"8u": "u1", "8s": "i1", "16u": "u2", "16s": "i2", "32s": "i4", "32f": "f4", "64f": "f8"}
+_BY_CHANNELS = {1: cv2.COLOR_GRAY2RGB, 3: cv2.COLOR_BGR2RGB, 4: cv2.COLOR_BGRA2RGB}
+# encoding -> (channels, sample type, conversion to RGB after wide samples are brought to 8 bits;
+# None: already RGB). ROS's "yuv422" is UYVY and "yuv422_yuy2" YUYV; "nv21" is a Y plane then
+# interleaved V, U at half size.
 _LAYOUT = {
-    "rgb8": (3, 1, None), "bgr8": (3, 1, cv2.COLOR_BGR2RGB), "rgba8": (4, 1, cv2.COLOR_RGBA2RGB),
-    "bgra8": (4, 1, cv2.COLOR_BGRA2RGB), "8uc3": (3, 1, cv2.COLOR_BGR2RGB), "8uc4": (4, 1, cv2.COLOR_BGRA2RGB),
-    "rgb16": (3, 2, None), "bgr16": (3, 2, cv2.COLOR_BGR2RGB), "rgba16": (4, 2, cv2.COLOR_RGBA2RGB),
-    "bgra16": (4, 2, cv2.COLOR_BGRA2RGB),
-    "mono8": (1, 1, cv2.COLOR_GRAY2RGB), "8uc1": (1, 1, cv2.COLOR_GRAY2RGB), "mono16": (1, 2, cv2.COLOR_GRAY2RGB),
-    "16uc1": (1, 2, cv2.COLOR_GRAY2RGB),
-    "yuv422": (2, 1, cv2.COLOR_YUV2RGB_UYVY), "yuv422_yuy2": (2, 1, cv2.COLOR_YUV2RGB_YUY2),
-    "nv21": (1, 1, cv2.COLOR_YUV2RGB_NV21),
-    **{name: (1, 2 if name.endswith("16") else 1, code) for name, code in _BAYER_TO_RGB.items()},
+    "rgb8": (3, "u1", None), "bgr8": (3, "u1", cv2.COLOR_BGR2RGB), "rgba8": (4, "u1", cv2.COLOR_RGBA2RGB),
+    "bgra8": (4, "u1", cv2.COLOR_BGRA2RGB),
+    "rgb16": (3, "u2", None), "bgr16": (3, "u2", cv2.COLOR_BGR2RGB), "rgba16": (4, "u2", cv2.COLOR_RGBA2RGB),
+    "bgra16": (4, "u2", cv2.COLOR_BGRA2RGB),
+    "mono8": (1, "u1", cv2.COLOR_GRAY2RGB), "mono16": (1, "u2", cv2.COLOR_GRAY2RGB),
+    **{f"{depth}c{channels}": (channels, sample, code)
+       for depth, sample in _CV_DEPTHS.items() for channels, code in _BY_CHANNELS.items()},
+    "yuv422": (2, "u1", cv2.COLOR_YUV2RGB_UYVY), "yuv422_yuy2": (2, "u1", cv2.COLOR_YUV2RGB_YUY2),
+    "nv21": (1, "u1", cv2.COLOR_YUV2RGB_NV21),
+    **{name: (1, "u2" if name.endswith("16") else "u1", code) for name, code in _BAYER_TO_RGB.items()},
 }
 _CHROMA_PAIRS = ("yuv422", "yuv422_yuy2", "nv21")  # chroma shared by two columns (and two rows for nv21)
-SUPPORTED_ENCODINGS: tuple[str, ...] = tuple(sorted(_LAYOUT))
-# Share of its first frame's range a stream's 16-bit range is widened by on each side (later
+# As ROS spells them (OpenCV's generic types in capitals: "32FC1"); decoding ignores case.
+SUPPORTED_ENCODINGS: tuple[str, ...] = tuple(sorted(name.upper() if name[0].isdigit() else name for name in _LAYOUT))
+# Share of its first frame's range a stream's sample range is widened by on each side (later
 # frames may be brighter or darker), and the share of samples left out at each end when that range
 # is read (a few dead or saturated pixels would otherwise set it).
 RANGE_MARGIN = 0.25
 RANGE_TAIL = 0.001
 # Distinct sample values a frame needs to fix a stream's range: fewer, it is blank (a camera that
-# starts black or saturated), and the range it would fix would clip every later frame.
+# starts black or saturated, a depth camera with no reading yet), and the range it would fix would
+# clip every later frame.
 RANGE_LEVELS = 16
 
 
 class SampleRange:
-    """How the 16-bit samples of one stream become 8-bit ones: fixed on its first frame with content.
+    """How the wide samples of one stream (16 or 32 bits, signed, floating point) become 8-bit ones:
+    fixed on its first frame with content.
 
-    Cameras write 10, 12 or 14 significant bits in 16-bit samples, and thermal cameras a narrow
-    band of the range; keeping the high byte (cv_bridge's conversion) leaves such frames nearly
-    black or flat, with nothing to segment. The range the first frame spans (but its extreme
-    ``RANGE_TAIL`` samples), widened by ``RANGE_MARGIN`` of itself on each side within 0..65535,
-    is mapped linearly onto 0..255; full-range samples keep their high byte (rounded). It is
-    fixed, not read again from each frame, so that a region keeps its colour (and its label)
-    from frame to frame; later samples outside it are clipped. Blank frames (fewer than
-    ``RANGE_LEVELS`` distinct values) are mapped by their own range and fix nothing.
+    Cameras write 10, 12 or 14 significant bits in 16-bit samples, thermal cameras a narrow band
+    of the range, depth cameras millimetres or metres; keeping the high byte (cv_bridge's
+    conversion) leaves such frames nearly black or flat, with nothing to segment. The range the
+    first frame spans (but its extreme ``RANGE_TAIL`` samples), widened by ``RANGE_MARGIN`` of
+    itself on each side within the sample type's range, is mapped linearly onto 0..255;
+    full-range 16-bit samples keep their high byte (rounded). It is fixed, not read again from
+    each frame, so that a region keeps its colour (and its label) from frame to frame; later
+    samples outside it are clipped. Blank frames (fewer than ``RANGE_LEVELS`` distinct values)
+    are mapped by their own range and fix nothing. Floating-point samples that are not numbers
+    (a depth camera's missing readings) become 0, infinities the ends of the range.
     """
 
     def __init__(self) -> None:
@@ -64,39 +75,54 @@ class SampleRange:
         self.high: float | None = None
 
     def to_8bit(self, samples: np.ndarray) -> np.ndarray:
-        """``samples`` (uint16, any shape) as uint8, the range set from them if it is not yet."""
+        """``samples`` (any numeric type, any shape) as uint8, the range set from them if it is not yet."""
         low, high = self.low, self.high
         if low is None or high is None:
-            low, high = _widened_range(samples)
-            if np.count_nonzero(np.bincount(samples.ravel(), minlength=1)) >= RANGE_LEVELS:
+            finite = samples[np.isfinite(samples)] if samples.dtype.kind == "f" else samples.ravel()
+            if finite.size == 0:
+                return np.zeros(samples.shape, dtype=np.uint8)
+            low, high = _widened_range(finite, samples.dtype)
+            if np.unique(finite).size >= RANGE_LEVELS:
                 self.low, self.high = low, high
-        scaled = (samples.astype(np.float32) - low) * np.float32(255.0 / (high - low))
+        wide = np.float32 if samples.dtype.itemsize <= 2 else np.float64  # exact for 16-bit samples
+        scaled = (samples.astype(wide) - wide(low)) * wide(255.0 / (high - low))
+        if samples.dtype.kind == "f":
+            np.nan_to_num(scaled, copy=False, nan=0.0, posinf=255.0, neginf=0.0)
         return np.clip(np.rint(scaled), 0, 255).astype(np.uint8)
 
 
-def _widened_range(samples: np.ndarray) -> tuple[float, float]:
-    """The range of ``samples`` but their extreme tails, widened by ``RANGE_MARGIN`` each side,
-    within 0..65535 and at least 255 wide (a flat first frame is not amplified)."""
+def _widened_range(samples: np.ndarray, dtype: np.dtype) -> tuple[float, float]:
+    """The range of ``samples`` (finite) but their extreme tails, widened by ``RANGE_MARGIN`` each
+    side within the range of ``dtype``; for integers at least 1/257 of that range wide (a flat
+    first frame is not amplified; 255 for 16-bit samples, which full-range samples then map to
+    their high byte exactly)."""
     low, high = (float(v) for v in np.quantile(samples, (RANGE_TAIL, 1 - RANGE_TAIL)))
     margin = RANGE_MARGIN * (high - low)
-    low, high = max(0.0, low - margin), min(65535.0, high + margin)
-    if high - low < 255:
-        low = max(0.0, min(low, 65535.0 - 255))
-        high = low + 255
+    if dtype.kind == "f":
+        low, high = low - margin, high + margin
+        least = 1e-6 * max(1.0, abs(low), abs(high))
+        return (low, high) if high - low >= least else (low, low + least)
+    info = np.iinfo(dtype)
+    low, high = max(float(info.min), low - margin), min(float(info.max), high + margin)
+    least = (float(info.max) - float(info.min)) / 257
+    if high - low < least:
+        low = max(float(info.min), min(low, float(info.max) - least))
+        high = low + least
     return low, high
 
 
 def _pixel_rows(data: np.ndarray | bytes, height: int, width: int, step: int, encoding: str,
                 big_endian: bool) -> np.ndarray:
     """View the payload as (rows, width[, channels]) after checking its size against the header
-    (rows: ``height``, or 1.5 ``height`` for nv21's chroma plane); 16-bit samples as uint16."""
+    (rows: ``height``, or 1.5 ``height`` for nv21's chroma plane), in the encoding's sample type."""
     if height <= 0 or width <= 0:
         raise BagError(f"image of size {width}x{height}: nothing to track in an empty frame")
     if encoding in _CHROMA_PAIRS and (width % 2 or (encoding == "nv21" and height % 2)):
         raise BagError(f"{encoding} image {width}x{height}: chroma is shared by pixel pairs, the size must be even")
-    channels, depth, _ = _LAYOUT[encoding]
+    channels, sample, _ = _LAYOUT[encoding]
+    dtype = np.dtype(sample).newbyteorder(">" if big_endian else "<")
     rows_needed = height * 3 // 2 if encoding == "nv21" else height
-    row_bytes = width * channels * depth
+    row_bytes = width * channels * dtype.itemsize
     if step < row_bytes:
         raise BagError(f"{encoding} image {width}x{height}: step {step} is shorter than a row ({row_bytes} bytes)")
     buffer = np.frombuffer(data, dtype=np.uint8)
@@ -104,8 +130,7 @@ def _pixel_rows(data: np.ndarray | bytes, height: int, width: int, step: int, en
         raise BagError(f"{encoding} image {width}x{height}: {buffer.size} bytes of data, "
                        f"{'1.5 x ' if encoding == 'nv21' else ''}height x step needs {rows_needed * step}")
     rows = buffer[: rows_needed * step].reshape(rows_needed, step)[:, :row_bytes]
-    if depth == 2:
-        dtype = np.dtype(">u2" if big_endian else "<u2")
+    if dtype != np.uint8:
         rows = np.ascontiguousarray(rows).view(dtype)
     shape = (rows_needed, width) if channels == 1 else (rows_needed, width, channels)
     return rows.reshape(shape)
@@ -124,9 +149,10 @@ def decode_image(encoding: str, height: int, width: int, step: int, data: np.nda
     data : bytes or uint8 array
         The payload.
     is_bigendian : bool
-        Byte order of 16-bit encodings.
+        Byte order of samples wider than a byte.
     sample_range : SampleRange, optional
-        The stream's: how 16-bit samples become 8-bit; None: a range read from this frame alone.
+        The stream's: how wide samples (16 or 32 bits, signed, floating point) become 8-bit;
+        None: a range read from this frame alone.
 
     Returns
     -------
@@ -141,7 +167,7 @@ def decode_image(encoding: str, height: int, width: int, step: int, data: np.nda
     name = encoding.lower()
     if name not in _LAYOUT:
         raise BagError(f"unsupported image encoding {encoding!r} (supported: {', '.join(SUPPORTED_ENCODINGS)}, "
-                       "and sensor_msgs/CompressedImage jpeg/png)")
+                       "and sensor_msgs/CompressedImage jpeg, png, compressedDepth)")
     pixels = _pixel_rows(data, height, width, step, name, bool(is_bigendian))
     if pixels.dtype != np.uint8:
         pixels = (sample_range or SampleRange()).to_8bit(pixels)
@@ -152,14 +178,19 @@ def decode_image(encoding: str, height: int, width: int, step: int, data: np.nda
 
 
 def decode_compressed(fmt: str, data: np.ndarray | bytes, sample_range: SampleRange | None = None) -> np.ndarray:
-    """Decode a ``sensor_msgs/CompressedImage`` (jpeg or png) into an RGB uint8 array; a 16-bit
-    png is brought to 8 bits by ``sample_range`` (see :func:`decode_image`)."""
+    """Decode a ``sensor_msgs/CompressedImage`` (jpeg, png, or compressedDepth png / rvl) into an
+    RGB uint8 array; 16-bit png and depth are brought to 8 bits by ``sample_range`` (see
+    :func:`decode_image`)."""
     buffer = np.frombuffer(data, dtype=np.uint8)
     if buffer.size == 0:
         raise BagError(f"compressed image ({fmt!r}) with no data")
+    if is_compressed_depth(fmt):
+        grey = (sample_range or SampleRange()).to_8bit(decode_compressed_depth(fmt, buffer))
+        return cv2.cvtColor(grey, cv2.COLOR_GRAY2RGB)
     decoded = cv2.imdecode(buffer, cv2.IMREAD_COLOR | cv2.IMREAD_ANYDEPTH)
     if decoded is None or decoded.size == 0:
-        raise BagError(f"compressed image in format {fmt!r} cannot be decoded (jpeg and png are supported)")
+        raise BagError(f"compressed image in format {fmt!r} cannot be decoded (jpeg, png and compressedDepth "
+                       "are supported)")
     if decoded.dtype != np.uint8:
         decoded = (sample_range or SampleRange()).to_8bit(decoded)
     return cv2.cvtColor(decoded, cv2.COLOR_BGR2RGB)

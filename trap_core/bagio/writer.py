@@ -19,7 +19,7 @@ STORAGES = ("mcap", "sqlite3", "ros1")
 def write_image_bag(path: str | Path, frames: Iterable[np.ndarray], *, topic: str = "/camera/image_raw",
                     encoding: str = "rgb8", compressed: str | None = None, storage: str = "mcap",
                     fps: float = 25.0, frame_id: str = "camera", start_ns: int = 1_700_000_000_000_000_000,
-                    sample_bits: int = 16) -> int:
+                    sample_bits: int | None = None) -> int:
     """Write ``frames`` (RGB uint8) to a new bag and return the number written.
 
     Parameters
@@ -32,14 +32,15 @@ def write_image_bag(path: str | Path, frames: Iterable[np.ndarray], *, topic: st
         Topic name and header frame id.
     encoding : str
         Raw encoding (``rgb8``, ``bgr8``, ``mono8``, ``bayer_rggb8``, ...), ignored if ``compressed``.
-    compressed : {None, 'jpeg', 'png'}
-        Write ``sensor_msgs/CompressedImage`` in this format instead of raw images.
+    compressed : str, optional
+        Write ``sensor_msgs/CompressedImage`` in this format (one of ``COMPRESSED_FORMATS``: jpeg,
+        png, or a compressedDepth one) instead of raw images.
     storage : {'mcap', 'sqlite3', 'ros1'}
         Container; mcap chunks are zstd-compressed (readable by Foxglove and ros2 bag).
     fps : float
         Frame rate that sets the header stamps and the log times.
-    sample_bits : int
-        16-bit encodings: significant bits of each sample (:func:`encode_image`).
+    sample_bits : int, optional
+        Integer encodings wider than 8 bits: significant bits of each sample (:func:`encode_image`).
     """
     if storage not in STORAGES:
         raise BagError(f"unknown storage {storage!r} (one of {', '.join(STORAGES)})")

@@ -6,7 +6,7 @@ import dataclasses
 import sys
 from pathlib import Path
 
-from trap_core.bagio import STORAGES, SUPPORTED_ENCODINGS
+from trap_core.bagio import COMPRESSED_FORMATS, STORAGES, SUPPORTED_ENCODINGS
 from trap_core.cli import run_main
 from trap_core.synthetic.scene import CELLS, MIXED, PHOTOS, PRESETS, ROAD, SHAPES, SceneConfig
 from trap_core.synthetic.video import write_synthetic
@@ -30,11 +30,14 @@ def build_parser() -> argparse.ArgumentParser:
                         help="cells: coloured Voronoi cells (the paper's Anim videos); road: asphalt with lane "
                              "markings; or a scikit-image photograph the camera pans over (other scenes)")
     parser.add_argument("--no-exits", action="store_true", help="no object leaves the field of view")
-    parser.add_argument("--encoding", choices=SUPPORTED_ENCODINGS, default="rgb8")
-    parser.add_argument("--sample-bits", dest="sample_bits", type=int, choices=range(8, 17), default=16,
-                        metavar="8..16", help="16-bit encodings: significant bits of each sample (12: a 12-bit "
-                                              "camera's 0..4095 in 16-bit samples)")
-    parser.add_argument("--compressed", choices=("jpeg", "png"), help="write sensor_msgs/CompressedImage")
+    spelled = {name.lower(): name for name in SUPPORTED_ENCODINGS}
+    parser.add_argument("--encoding", choices=SUPPORTED_ENCODINGS, default="rgb8",
+                        type=lambda name: spelled.get(name.lower(), name), help="as ROS spells it (any case)")
+    parser.add_argument("--sample-bits", dest="sample_bits", type=int, choices=range(8, 33), metavar="8..32",
+                        help="integer encodings wider than 8 bits: significant bits of each sample (12: a 12-bit "
+                             "camera's 0..4095 in 16-bit samples; default: the full width)")
+    parser.add_argument("--compressed", choices=COMPRESSED_FORMATS,
+                        help="write sensor_msgs/CompressedImage (compressedDepth: the frames' grey as depth)")
     parser.add_argument("--storage", choices=STORAGES, default="mcap")
     parser.add_argument("--topic", default="/camera/image_raw")
     return parser

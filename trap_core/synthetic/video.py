@@ -14,11 +14,11 @@ from trap_core.synthetic.scene import SceneConfig, render
 
 def write_synthetic(cfg: SceneConfig, bag: str | Path, *, encoding: str = "rgb8", compressed: str | None = None,
                     storage: str = "mcap", topic: str = "/camera/image_raw", progress: bool = False,
-                    sample_bits: int = 16) -> tuple[Path, Path]:
+                    sample_bits: int | None = None) -> tuple[Path, Path]:
     """Render ``cfg`` into ``bag`` and its ground truth into ``NAME.gt.txt`` beside it.
 
     ``progress`` prints frames done / total, rate and ETA to stderr; ``sample_bits``: significant
-    bits of 16-bit encodings' samples (:func:`trap_core.bagio.encode_image`).
+    bits of wide integer encodings' samples (:func:`trap_core.bagio.encode_image`).
 
     Returns
     -------

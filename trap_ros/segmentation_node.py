@@ -48,7 +48,7 @@ class SegmentationNode(Node):
         # the last frame submitted, where tracking reads the camera's step from the images (read from it)
         self.previous: np.ndarray | None = None
         self.error: str | None = None  # why no frame can be segmented (first_frame_setup refused the first)
-        self.sample_range = SampleRange()  # how 16-bit images become 8-bit, fixed on the first one
+        self.sample_range = SampleRange()  # how wide samples (16-bit, depth) become 8-bit, fixed on the first frame
         self.create_subscription(Image, "image", self._on_image, PIPELINE)
         self.create_timer(0.02, self.publish_done)
 

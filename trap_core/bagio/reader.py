@@ -107,7 +107,7 @@ class ImageStream:
     def __init__(self, path: str | Path, topic: str | None = None) -> None:
         self.path = Path(path)
         self._bag = _OpenBag(self.path)
-        self._sample_range = SampleRange()  # 16-bit samples: one mapping for the whole topic
+        self._sample_range = SampleRange()  # wide samples (16-bit, depth): one mapping for the whole topic
         try:
             self.topic, self.msgtype, self.count = self._choose_topic(topic)
         except BagError:

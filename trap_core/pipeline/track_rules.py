@@ -18,7 +18,7 @@ from trap_core.clustering import ClusterSummary, Track, build_track, twin_cluste
 from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph
-from trap_core.robust import (continue_to_border, continue_tracks, drop_repeated_pieces, drop_shared_stretches,
+from trap_core.robust import (colour_overlap, colour_shares, continue_to_border, continue_tracks, drop_repeated_pieces, drop_shared_stretches,
                               drop_still_regions, drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes,
                               join_handovers, keep_one_size, lookalike_tracks, mend_shared_stretches,
                               merge_duplicates, separate_groups, swap_at_crossings)
@@ -119,7 +119,8 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
     width, height = view
     summary = clusters.summary
     tracks = _gaps_filled([drop_strays(t, max(3, params.tau // 3)) for t in tracks], params)
-    alike = lookalike_tracks(tracks, clusters.labels, clusters.structures, clusters.occurrences)
+    alike = lookalike_tracks(tracks, clusters.labels, clusters.structures, clusters.occurrences,
+                             colours=colour_overlap(colour_shares(tracks, tracks_of.graphs)))
     tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
     spare = np.flatnonzero((summary.length >= params.tau) & (True if clusters.moving is None else clusters.moving))
     spare = spare[~np.isin(spare, clusters.selected)]

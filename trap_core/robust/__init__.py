@@ -3,6 +3,7 @@ track boxes without the background and where objects meet."""
 
 from trap_core.clustering import reaches_border
 from trap_core.robust.anchors import stays_with_scene
+from trap_core.robust.appearance import colour_overlap, colour_shares
 from trap_core.robust.backdrop import (HELD_SHARE, SHADOWED_SHARE, held_share, shadowed,
                                        without_backdrop)
 from trap_core.robust.borders import continue_to_border, end_at_exits
@@ -25,7 +26,8 @@ from trap_core.robust.still import drop_still_regions
 from trap_core.robust.strays import drop_strays
 
 __all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderContacts", "alone_at_ends", "border_contacts",
-           "border_share", "camera_paths", "camera_transforms", "cluster_world_speed", "continue_to_border",
+           "border_share", "camera_paths", "camera_transforms", "cluster_world_speed", "colour_overlap", "colour_shares",
+           "continue_to_border",
            "continue_tracks", "drop_repeated_pieces", "drop_shared_stretches", "drop_still_regions", "drop_strays",
            "end_at_exits", "extend_from_twins", "fill_gaps", "grow_boxes", "hand_to_owners", "held_share",
            "join_handovers", "keep_one_size", "lookalike_tracks", "mend_shared_stretches", "merge_duplicates",

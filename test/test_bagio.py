@@ -199,15 +199,20 @@ def test_tiny_frames_are_refused(tmp_path: Path) -> None:
                 pass
 
 
-def test_run_bag_tracks_and_writes_the_frames_before_a_bad_one(tmp_path: Path) -> None:
+@pytest.mark.parametrize("bad_size,message", [
+    ((4, 4), "image of size 4x4 is too small"),
+    ((480, 640), "image of size 640x480 after frames of 320x240: one image size per run"),  # a camera reconfigured
+])
+def test_run_bag_tracks_and_writes_the_frames_before_a_bad_one(tmp_path: Path, bad_size: tuple[int, int],
+                                                               message: str) -> None:
     import json
 
     from trap_core.pipeline import TrapParams, run_bag
     from trap_core.synthetic import SceneConfig
     from trap_core.synthetic.scene import render
     frames = [rendered.rgb for rendered in render(SceneConfig(width=320, height=240, frames=40, seed=4))]
-    write_image_bag(tmp_path / "bag", [*frames, np.zeros((4, 4, 3), np.uint8)])
-    with pytest.raises(BagError, match="frame 40 of /camera/image_raw: image of size 4x4 is too small"):
+    write_image_bag(tmp_path / "bag", [*frames, np.zeros((*bad_size, 3), np.uint8)])
+    with pytest.raises(BagError, match=f"frame 40 of /camera/image_raw: {message}"):
         run_bag(tmp_path / "bag", tmp_path / "out", TrapParams(segmentation="colour"))
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert summary["frames"] == 40 and summary["counts"]["tracks"] >= 1  # every frame in flight was kept

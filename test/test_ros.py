@@ -124,6 +124,37 @@ def test_stopped_spinners_leave_no_callback_to_fail_on_destroyed_nodes(capfd: py
     assert "never retrieved" not in capfd.readouterr().err
 
 
+def test_segmentation_node_skips_frames_it_cannot_track_and_goes_on(ros_bag: Path) -> None:
+    """On a live topic, a frame of an unknown encoding, a malformed one, a tiny one or one of
+    another size than the first (a camera reconfigured) is skipped with an error line; the node
+    keeps segmenting the frames after it."""
+    from std_msgs.msg import Header
+
+    from trap_ros.messages import image_message
+    with open_image_stream(ros_bag) as stream:
+        frames = [frame.rgb for frame, _ in zip(stream, range(2))]
+    context = Context()
+    rclpy.init(context=context)
+    try:
+        node = SegmentationNode(context=context, parameter_overrides=SYNTHETIC)
+        listener = rclpy.create_node("graphs", context=context)  # the node publishes to a subscriber only
+        listener.create_subscription(CompressedImage, "/trap/graph", lambda _: None, PIPELINE)
+        good = [image_message(rgb, Header(frame_id="c")) for rgb in frames]
+        unknown = image_message(frames[0], Header(frame_id="c"))
+        unknown.encoding = "16UC2"
+        short = image_message(frames[0], Header(frame_id="c"))
+        short.data = short.data[:100]
+        tiny = image_message(frames[0][:8, :8], Header(frame_id="c"))
+        larger = image_message(np.zeros((480, 640, 3), np.uint8), Header(frame_id="c"))
+        for message in (good[0], unknown, short, tiny, larger, good[1]):
+            node._on_image(message)
+        assert node.errors == 4 and len(node.pending) + node.published == 2
+        node.destroy_node()
+        listener.destroy_node()
+    finally:
+        rclpy.shutdown(context=context)
+
+
 def test_node_parameter_names_do_not_collide() -> None:
     """A parameter file applies to every node (``/**``): the reader's own parameters must not
     share a name with a TRAP parameter, or one would silently set the other."""

@@ -18,7 +18,7 @@ from rclpy.node import Node
 from sensor_msgs.msg import CompressedImage, Image
 from visualization_msgs.msg import MarkerArray
 
-from trap_core.bagio import SampleRange
+from trap_core.bagio import BagError, FrameSize, SampleRange
 from trap_core.pipeline import GRAPH_STAGE, IMAGE_STEP_STAGE, first_frame_setup, frame_graph
 from trap_core.segmentation import SegmentationError
 from trap_ros.messages import graph_markers, graph_message, image_rgb
@@ -49,13 +49,15 @@ class SegmentationNode(Node):
         self.previous: np.ndarray | None = None
         self.error: str | None = None  # why no frame can be segmented (first_frame_setup refused the first)
         self.sample_range = SampleRange()  # how wide samples (16-bit, depth) become 8-bit, fixed on the first frame
+        self.frame_size = FrameSize()  # every frame the first one's size
         self.create_subscription(Image, "image", self._on_image, PIPELINE)
         self.create_timer(0.02, self.publish_done)
 
     def _on_image(self, message: Image) -> None:
         try:
             rgb = image_rgb(message, self.sample_range)
-        except ValueError as error:
+            self.frame_size.check(rgb)
+        except BagError as error:
             self.errors += 1
             self.get_logger().error(f"frame skipped: {error}")
             return

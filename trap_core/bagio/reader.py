@@ -18,10 +18,10 @@ from rosbags.highlevel import AnyReader
 
 from trap_core.bagio.decode import SampleRange, decode_compressed, decode_image
 from trap_core.bagio.errors import BagError
+from trap_core.bagio.frame_size import FrameSize
 
 IMAGE_TYPES = ("sensor_msgs/msg/Image", "sensor_msgs/msg/CompressedImage")
 ROS1_MAGIC = b"#ROSBAG V2.0\n"  # first line of every ROS 1 bag
-MIN_SIDE = 16  # px: below, a frame holds too few regions of a useful size to form the faces patterns are made of
 
 
 @dataclass(frozen=True)
@@ -108,6 +108,7 @@ class ImageStream:
         self.path = Path(path)
         self._bag = _OpenBag(self.path)
         self._sample_range = SampleRange()  # wide samples (16-bit, depth): one mapping for the whole topic
+        self._frame_size = FrameSize()  # every frame the first one's size
         try:
             self.topic, self.msgtype, self.count = self._choose_topic(topic)
         except BagError:
@@ -152,9 +153,7 @@ class ImageStream:
             else:
                 rgb = decode_image(message.encoding, message.height, message.width, message.step,
                                    message.data, bool(message.is_bigendian), self._sample_range)
-            if min(rgb.shape[:2]) < MIN_SIDE:
-                raise BagError(f"image of size {rgb.shape[1]}x{rgb.shape[0]} is too small to track "
-                               f"(at least {MIN_SIDE} px a side)")
+            self._frame_size.check(rgb)
             return rgb
         except BagError as error:
             raise BagError(f"{self.path}: frame {index} of {self.topic}: {error}") from None

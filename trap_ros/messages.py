@@ -34,7 +34,7 @@ def image_message(rgb: np.ndarray, header: Header) -> Image:
 
 
 def image_rgb(message: Image, sample_range: SampleRange | None = None) -> np.ndarray:
-    """RGB of an image message; ``sample_range``: the topic's, for 16-bit encodings."""
+    """RGB of an image message; ``sample_range``: the topic's, for wide samples (16-bit, depth)."""
     return decode_image(message.encoding, message.height, message.width, message.step,
                         np.asarray(message.data, dtype=np.uint8), bool(message.is_bigendian), sample_range)
 

@@ -80,21 +80,21 @@ def _rvl_samples(body: np.ndarray, fmt: str) -> np.ndarray:
     return samples.reshape(height, width)
 
 
-def compress_depth(depth: np.ndarray, fmt: str) -> np.ndarray:
-    """``depth`` (uint16 samples for 16UC1 / mono16, float32 metres for 32FC1) as the data of a
-    compressedDepth message in format ``fmt`` (writing bags: the inverse of
-    :func:`decode_compressed_depth`); 32FC1 depth at or beyond ``DEPTH_MAX`` is no reading."""
+def compress_depth(metres: np.ndarray, fmt: str) -> np.ndarray:
+    """Depth in ``metres`` as the data of a compressedDepth message in format ``fmt`` (writing
+    bags: the inverse of :func:`decode_compressed_depth`): 16UC1 / mono16 in millimetres (REP
+    118), 32FC1 as quantised inverse depth, where depth at or beyond ``DEPTH_MAX`` is no reading."""
     encoding, codec = _parts(fmt)
     quant_a = quant_b = 0.0
     if encoding == "32fc1":
         quant_a = DEPTH_QUANTIZATION * (DEPTH_QUANTIZATION + 1.0)
         quant_b = 1.0 - quant_a / DEPTH_MAX
-        valid = np.isfinite(depth) & (depth > 0) & (depth < DEPTH_MAX)
-        inverse = np.zeros(depth.shape, dtype=np.float64)
-        inverse[valid] = quant_a / depth[valid] + quant_b
+        valid = np.isfinite(metres) & (metres > 0) & (metres < DEPTH_MAX)
+        inverse = np.zeros(metres.shape, dtype=np.float64)
+        inverse[valid] = quant_a / metres[valid] + quant_b
         samples = np.clip(inverse, 0, 65535).astype(np.uint16)
     else:
-        samples = np.ascontiguousarray(depth, dtype=np.uint16)
+        samples = np.rint(np.clip(np.nan_to_num(metres * 1000.0), 0, 65535)).astype(np.uint16)
     header = np.zeros(HEADER_BYTES, dtype=np.uint8)
     header[4:].view("<f4")[:] = (quant_a, quant_b)
     if codec == "png":

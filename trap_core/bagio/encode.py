@@ -103,9 +103,8 @@ def _spread(narrow: np.ndarray, dtype: np.dtype, sample_bits: int | None) -> np.
 def compress_image(rgb: np.ndarray, fmt: str, jpeg_quality: int = 90) -> np.ndarray:
     """Compress ``rgb`` in one of :data:`COMPRESSED_FORMATS` (payload of a
     ``sensor_msgs/CompressedImage``); as depth, its grey is 0.5 m (black) to 5.6 m (white)."""
-    if is_compressed_depth(fmt) and fmt in COMPRESSED_FORMATS:
-        metres = 0.5 + cv2.cvtColor(rgb, cv2.COLOR_RGB2GRAY).astype(np.float32) * np.float32(0.02)
-        return compress_depth(metres if fmt.startswith("32FC1") else np.rint(metres * 1000).astype(np.uint16), fmt)
+    if is_compressed_depth(fmt):
+        return compress_depth(0.5 + cv2.cvtColor(rgb, cv2.COLOR_RGB2GRAY).astype(np.float32) * np.float32(0.02), fmt)
     if fmt not in ("jpeg", "png"):
         raise BagError(f"cannot compress frames as {fmt!r} ({', '.join(COMPRESSED_FORMATS)})")
     params = [cv2.IMWRITE_JPEG_QUALITY, jpeg_quality] if fmt == "jpeg" else []

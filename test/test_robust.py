@@ -1695,6 +1695,62 @@ def test_a_track_that_takes_over_where_another_ended_is_appended_to_it() -> None
     assert len(join_handovers(tracks, 100, 12, 40.0)) == 4
 
 
+def _out_and_back(leave: int, back: int, n: int = 100, y: float = 200.0) -> tuple[np.ndarray, np.ndarray]:
+    """Frames and boxes of an object that walks left out of a 640x480 view (its last box at the
+    border at frame ``leave``) and walks back in from frame ``back`` (its first box at the border)."""
+    x = np.r_[np.linspace(200.0, 0.0, leave + 1), np.full(back - leave - 1, -40.0), np.linspace(0.0, 200.0, n - back)]
+    frames = np.r_[0:leave + 1, back:n]
+    return frames, np.column_stack([x[frames], np.full(frames.size, y), np.full(frames.size, 40.0),
+                                    np.full(frames.size, 30.0)])
+
+
+def test_a_track_that_left_the_view_is_continued_by_the_one_bringing_its_object_back() -> None:
+    """Tracks 1 and 2 hold one person before it leaves through the left border (frame 40) and
+    after it comes back there (frame 70); track 3 holds a look-alike all along. Tracks 1 and 2
+    become one (ids 1, 2). A track that ends or starts inside the view is not an exit nor a
+    return."""
+    from trap_core.robust import join_returns
+    frames, boxes = _out_and_back(40, 70)
+    gone, back = frames <= 40, frames >= 70
+    other = _as_track(3, np.arange(100), np.tile([300.0, 300.0, 40.0, 30.0], (100, 1)))
+    tracks = [_as_track(1, frames[gone], boxes[gone]), _as_track(2, frames[back], boxes[back]), other]
+    alike = np.ones((3, 3), dtype=bool)
+    out = join_returns(tracks, 640, 480, alike)
+    assert [t.track_id for t in out] == [1, 2]
+    assert out[0].frames.tolist() == frames.tolist() and out[1].frames.tolist() == list(range(100))
+    assert len(join_returns(tracks, 640, 480, np.eye(3, dtype=bool))) == 3  # none looks like another
+    inside = _as_track(1, frames[gone][:-10], boxes[gone][:-10])  # ends 20 px in: lost, not gone
+    assert len(join_returns([inside, *tracks[1:]], 640, 480, alike)) == 3
+    later_in = _as_track(2, frames[back][5:], boxes[back][5:])  # starts 20 px in
+    assert len(join_returns([tracks[0], later_in, other], 640, 480, alike)) == 3
+
+
+def test_with_two_lookalikes_out_of_view_at_once_neither_takes_the_one_that_comes_back() -> None:
+    """Tracks 1 and 2 leave the view (left border at frame 40, right border at 50); track 3 enters
+    at frame 70. All look alike: nothing tells which came back, no track is joined. Where track 2
+    looks different, track 3 continues track 1. An object that leaves and comes back twice is
+    one track."""
+    from trap_core.robust import join_returns
+    frames, boxes = _out_and_back(40, 70)
+    gone, back = frames <= 40, frames >= 70
+    right = np.column_stack([np.linspace(400.0, 600.0, 51), np.full(51, 100.0), np.full(51, 40.0),
+                             np.full(51, 30.0)])
+    tracks = [_as_track(1, frames[gone], boxes[gone]), _as_track(2, np.arange(51), right),
+              _as_track(3, frames[back], boxes[back])]
+    alike = np.ones((3, 3), dtype=bool)
+    assert len(join_returns(tracks, 640, 480, alike)) == 3
+    alike[1, 2] = alike[2, 1] = False
+    out = join_returns(tracks, 640, 480, alike)
+    assert len(out) == 2 and out[0].frames.tolist() == frames.tolist()
+    seen = np.r_[0:21, 40:71, 90:100]  # out at frame 20, back at 40, out again at 70, back at 90
+    x = np.interp(seen, [0, 20, 40, 55, 70, 90, 99], [200.0, 0.0, 0.0, 150.0, 0.0, 0.0, 100.0])
+    boxes = np.column_stack([x, np.full(seen.size, 200.0), np.full(seen.size, 40.0), np.full(seen.size, 30.0)])
+    pieces = [_as_track(k, seen[rows], boxes[rows]) for k, rows in
+              enumerate([seen <= 20, (seen >= 40) & (seen <= 70), seen >= 90], start=1)]
+    out = join_returns(pieces, 640, 480, np.ones((3, 3), dtype=bool))
+    assert len(out) == 1 and out[0].frames.tolist() == seen.tolist()
+
+
 def test_a_track_that_takes_over_after_a_few_frames_between_the_objects_is_appended() -> None:
     """As above, but track 2's first two frames after track 1's end lie between the two objects
     (50 px off track 1's motion, repeating no box): its next ten follow that motion, so the two

@@ -20,7 +20,7 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (colour_overlap, colour_shares, continue_to_border, continue_tracks, drop_repeated_pieces,
                               drop_shared_stretches, drop_still_regions, drop_strays, end_at_exits, extend_from_twins,
-                              fill_gaps, grow_boxes, join_handovers, keep_one_size, lookalike_tracks,
+                              fill_gaps, grow_boxes, join_handovers, join_returns, keep_one_size, lookalike_tracks,
                               mend_shared_stretches, merge_duplicates, separate_groups, swap_at_crossings)
 
 
@@ -107,6 +107,8 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
         tracks = _one_track_per_object(tracks, clusters, tracks_of, n_frames, view, motion_window)
     if robust and params.to_border:
         tracks = [continue_to_border(t, n_frames, width, height, motion_window, 2 * params.tau) for t in tracks]
+    if robust and params.one_track and params.rejoin and len(tracks) > 1:
+        tracks = join_returns(tracks, width, height, _lookalikes(tracks, clusters, tracks_of.graphs))
     return tracks
 
 
@@ -119,8 +121,7 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
     width, height = view
     summary = clusters.summary
     tracks = _gaps_filled([drop_strays(t, max(3, params.tau // 3)) for t in tracks], params)
-    alike = lookalike_tracks(tracks, clusters.labels, clusters.structures, clusters.occurrences,
-                             colours=colour_overlap(colour_shares(tracks, tracks_of.graphs)))
+    alike = _lookalikes(tracks, clusters, tracks_of.graphs)
     tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
     spare = np.flatnonzero((summary.length >= params.tau) & (True if clusters.moving is None else clusters.moving))
     spare = spare[~np.isin(spare, clusters.selected)]
@@ -137,6 +138,12 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
     if not params.n_objects:
         tracks = keep_one_size(tracks, params.tau, int(params.min_track_length * n_frames))
     return tracks
+
+
+def _lookalikes(tracks: list[Track], clusters: Clusters, graphs: Sequence[PlaneGraph]) -> np.ndarray:
+    """(T, T) whether two tracks may hold look-alike objects (:func:`lookalike_tracks`, colours too)."""
+    return lookalike_tracks(tracks, clusters.labels, clusters.structures, clusters.occurrences,
+                            colours=colour_overlap(colour_shares(tracks, graphs)))
 
 
 def _gaps_filled(tracks: list[Track], params: TrapParams) -> list[Track]:

@@ -32,8 +32,8 @@ def join_returns(tracks: Sequence[Track], width: float, height: float, alike: np
     """
     out = list(tracks)
     alike = np.asarray(alike, dtype=bool)
-    leaves = [bool(reaches_border(t.boxes[-1:], width, height)[0]) for t in out]
-    enters = [bool(reaches_border(t.boxes[:1], width, height)[0]) for t in out]
+    leaves = reaches_border(np.array([t.boxes[-1] for t in out]).reshape(-1, 4), width, height)
+    enters = reaches_border(np.array([t.boxes[0] for t in out]).reshape(-1, 4), width, height)
     ends = np.array([t.frames[-1] for t in out])
     starts = np.array([t.frames[0] for t in out])
     follows: dict[int, int] = {}  # index of a track that left -> index of the track that brings its object back

@@ -606,6 +606,41 @@ def test_oversized_boxes_outside_groups_get_the_usual_size_on_the_path() -> None
                                boxes)
 
 
+def test_after_a_meeting_each_box_is_put_back_on_its_objects_path() -> None:
+    from trap_core.clustering import Track, box_centres
+    from trap_core.robust import GroupBoxes, separate_groups, through_groups
+    frames = np.arange(60)
+    a = np.column_stack([100 + 4.0 * frames, np.full(60, 200.0), np.full(60, 40.0), np.full(60, 30.0)])
+    b = np.column_stack([340 - 4.0 * frames, np.full(60, 210.0), np.full(60, 40.0), np.full(60, 30.0)])
+    meeting = slice(26, 35)  # the two look-alikes overlap and cross: one region, both tracks see the pair
+    pair = np.column_stack([np.minimum(a[:, 0], b[:, 0]), a[:, 1], np.abs(a[:, 0] - b[:, 0]) + 40, np.full(60, 40.0)])
+    seen_a, seen_b = a.copy(), b.copy()
+    seen_a[meeting] = seen_b[meeting] = pair[meeting]
+    seen = [Track(1, frames, seen_a, np.ones(60), 1, box_centres(seen_a)),
+            Track(2, frames, seen_b, np.ones(60), 2, box_centres(seen_b))]
+    placed = separate_groups(seen, 60, 640, 480, window=10)
+    assert not np.allclose(placed[0].boxes, a)  # both patterns' means are the pair's middle
+    groups = GroupBoxes.placed(seen, placed)
+    np.testing.assert_allclose(through_groups(placed[0], groups, max_gap=20).boxes, a)
+    np.testing.assert_allclose(through_groups(placed[1], groups, max_gap=20).boxes, b)
+    kept = through_groups(placed[0], groups, max_gap=5)  # a longer meeting: the object may have turned
+    np.testing.assert_allclose(kept.boxes, placed[0].boxes)
+
+
+def test_a_box_put_back_on_its_path_stays_inside_the_box_seen_there() -> None:
+    from trap_core.robust import GroupBoxes, through_groups
+    frames = np.arange(30)
+    path = np.column_stack([100 + 2.0 * frames, np.full(30, 200.0), np.full(30, 40.0), np.full(30, 30.0)])
+    seen, placed = path.copy(), path.copy()
+    meeting = slice(10, 20)
+    seen[meeting] = path[meeting] + [10.0, 0.0, 40.0, 0.0]  # the object turned: it was not on the straight path
+    placed[meeting] = seen[meeting] + [20.0, 0.0, -40.0, 0.0]
+    groups = GroupBoxes.placed([_as_track(1, frames, seen)], [_as_track(1, frames, placed)])
+    out = through_groups(_as_track(1, frames, placed), groups, max_gap=20).boxes
+    np.testing.assert_allclose(out[meeting], seen[meeting] * [1, 1, 0, 1] + [0.0, 0.0, 40.0, 0.0])  # its left end
+    np.testing.assert_allclose(out[20:], path[20:])
+
+
 def test_the_usual_size_is_taken_where_no_other_track_touches_the_box() -> None:
     """A look-alike passing close adds a strip of itself to the track's box for a long stretch
     without the two ever forming a group: those boxes must not become the usual size."""

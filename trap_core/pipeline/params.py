@@ -143,7 +143,8 @@ class TrapParams:
                                "moving as over its last (first) tau/2 frames fully in view, is partly visible")
     groups: bool = _p(True, "robust: where tracks' boxes merge, each gets its usual size at its side of the pair, "
                             "and a track that vanishes inside another's box continues there while it holds two "
-                            "objects")
+                            "objects; once the track rules have run, a box so placed in a meeting of up to 2 tau "
+                            "frames follows the straight path of its track across it, inside the pair's box")
     linkage: str = _p("average", "hierarchical clustering linkage: average, single, complete, weighted (ours)")
     ignore_top: float = _p(0.1, "share of the top levels of the hierarchy the lifetime cut ignores")
     n_objects: int = _p(0, "objects to track; 0 = found without supervision (ours)")

@@ -18,10 +18,11 @@ from trap_core.clustering import ClusterSummary, Track, build_track, twin_cluste
 from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph
-from trap_core.robust import (colour_overlap, colour_shares, continue_to_border, continue_tracks, drop_repeated_pieces,
-                              drop_shared_stretches, drop_still_regions, drop_strays, end_at_exits, extend_from_twins,
-                              fill_gaps, grow_boxes, join_handovers, join_returns, keep_one_size, lookalike_tracks,
-                              mend_shared_stretches, merge_duplicates, separate_groups, swap_at_crossings)
+from trap_core.robust import (GroupBoxes, colour_overlap, colour_shares, continue_to_border, continue_tracks,
+                              drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_strays, end_at_exits,
+                              extend_from_twins, fill_gaps, grow_boxes, join_handovers, join_returns, keep_one_size,
+                              lookalike_tracks, mend_shared_stretches, merge_duplicates, separate_groups,
+                              swap_at_crossings, through_groups)
 
 
 @dataclass
@@ -99,9 +100,12 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
                               moving)
         tracks = extend_from_twins(tracks, [tracks_of(cluster) for cluster in twins], params.tau, params.size_jump,
                                    view=view)
+    placed = GroupBoxes({})
     if robust and (params.size_jump or params.groups):
+        seen = tracks
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=params.groups, patience=params.tau, min_gap=params.tau)
+        placed = GroupBoxes.placed(seen, tracks)
     motion_window = max(3, params.tau // 2)  # frames over which a track's motion at a point is read
     if robust and params.one_track:
         tracks = _one_track_per_object(tracks, clusters, tracks_of, n_frames, view, motion_window)
@@ -109,6 +113,8 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
         tracks = [continue_to_border(t, n_frames, width, height, motion_window, 2 * params.tau) for t in tracks]
     if robust and params.one_track and params.rejoin and len(tracks) > 1:
         tracks = join_returns(tracks, width, height, _lookalikes(tracks, clusters, tracks_of.graphs))
+    if robust and params.groups:  # who is who is settled: placed boxes back on their track's path
+        tracks = [through_groups(t, placed, 2 * params.tau) for t in tracks]
     return tracks
 
 

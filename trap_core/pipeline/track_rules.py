@@ -19,10 +19,10 @@ from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (GroupBoxes, colour_overlap, colour_shares, continue_to_border, continue_tracks,
-                              drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_strays, end_at_exits,
-                              extend_from_twins, fill_gaps, grow_boxes, join_handovers, join_returns, keep_one_size,
-                              lookalike_tracks, mend_shared_stretches, merge_duplicates, separate_groups,
-                              swap_at_crossings, through_groups)
+                              drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_strays,
+                              end_at_exits, extend_from_twins, fill_gaps, grow_boxes, join_handovers, join_returns,
+                              keep_one_size, lookalike_tracks, mend_shared_stretches, merge_duplicates,
+                              separate_groups, swap_at_crossings, through_groups)
 
 
 @dataclass

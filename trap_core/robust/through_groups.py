@@ -39,10 +39,10 @@ class GroupBoxes:
         tracks, same order; frames it added to follow a hidden object have no observed box)."""
         observed = {}
         for seen, placed in zip(before, after):
-            rows = np.searchsorted(seen.frames, placed.frames).clip(max=max(seen.frames.size - 1, 0))
-            for frame, box, row in zip(placed.frames.tolist(), placed.boxes, rows.tolist()):
-                if seen.frames.size and seen.frames[row] == frame and not np.array_equal(seen.boxes[row], box):
-                    observed[(frame, box.tobytes())] = seen.boxes[row]
+            _, rows, seen_rows = np.intersect1d(placed.frames, seen.frames, assume_unique=True, return_indices=True)
+            changed = np.any(placed.boxes[rows] != seen.boxes[seen_rows], axis=1)
+            for row, seen_row in zip(rows[changed].tolist(), seen_rows[changed].tolist()):
+                observed[(int(placed.frames[row]), placed.boxes[row].tobytes())] = seen.boxes[seen_row]
         return cls(observed)
 
     def behind(self, track: Track) -> np.ndarray:

@@ -1826,6 +1826,25 @@ def test_a_track_that_takes_over_after_travelling_with_another_object_is_appende
     assert len(join_handovers(tracks, 100, 12, 40.0)) == 3
 
 
+def test_a_track_that_goes_on_where_a_duplicate_of_it_ended_is_appended() -> None:
+    """Track 1 holds frames 0-59 of an object moving right. Track 2 holds the same object from
+    frame 30 (boxes 3 px off track 1's) and goes on along its motion to the end: a second
+    cluster on the object that outlived the first. The two are one. Where track 2's first ten
+    frames are on nothing tracked, it held an object of its own: it stays."""
+    from trap_core.robust import join_handovers
+    t = np.arange(100, dtype=float)
+    boxes = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    frames = np.arange(100)
+    second = boxes[30:] + [3.0, 0.0, 0.0, 0.0]
+    tracks = [_as_track(1, frames[:60], boxes[:60]), _as_track(2, frames[30:], second)]
+    out = join_handovers(tracks, 100, 12, 40.0)
+    assert len(out) == 1 and out[0].frames.tolist() == list(range(100))
+    np.testing.assert_allclose(out[0].boxes[60:], second[30:])
+    own_start = second.copy()
+    own_start[:10] += [0.0, -185.0, 0.0, 0.0]
+    assert len(join_handovers([tracks[0], _as_track(2, frames[30:], own_start)], 100, 12, 40.0)) == 2
+
+
 def test_a_track_that_starts_beside_a_wandering_end_takes_over_when_it_is_the_only_one() -> None:
     """Track 1 follows an object moving right until frame 50; its object then turns back, while
     track 1 stays at x 200 and wanders down (its boxes between look-alikes, up to 85 px off the
@@ -1848,6 +1867,25 @@ def test_a_track_that_starts_beside_a_wandering_end_takes_over_when_it_is_the_on
     np.testing.assert_allclose(out[0].boxes[52:], boxes[55:])
     beside = boxes[55:] + [0.0, 15.0, 0.0, 0.0]
     assert len(join_handovers(tracks + [_as_track(3, frames[55:], beside)], 100, 12, 40.0)) == 3
+
+
+def test_a_short_piece_apart_from_the_rest_of_its_track_is_dropped() -> None:
+    """A track holds frames 0-199 and, after gaps of more than 12 frames, 20 frames (less than
+    tau, 25) in the middle of a 300-frame video: that piece goes. At the video's end a piece of
+    15 frames stays (the video cut it short), one of 10 (too few to read a motion) goes; so
+    does a single box at the video's first frame. A track of one short piece is left as it is."""
+    from trap_core.robust import drop_stray_pieces
+    def kept(frames: np.ndarray) -> list[int]:
+        boxes = np.column_stack([frames * 1.0, np.full(frames.size, 100.0), np.full(frames.size, 40.0),
+                                 np.full(frames.size, 30.0)])
+        return drop_stray_pieces(_as_track(1, frames, boxes), 300, 12, 25).frames.tolist()
+    main = list(range(20, 200))
+    assert kept(np.r_[20:200, 230:250]) == main
+    assert kept(np.r_[20:200, 230:256]) == main + list(range(230, 256))
+    assert kept(np.r_[20:200, 285:300]) == main + list(range(285, 300))
+    assert kept(np.r_[20:200, 290:300]) == main
+    assert kept(np.r_[0, 20:200]) == main
+    assert kept(np.r_[100:110]) == list(range(100, 110))
 
 
 def test_a_piece_of_a_track_on_another_tracks_object_is_dropped() -> None:

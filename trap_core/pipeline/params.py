@@ -131,8 +131,9 @@ class TrapParams:
                                "in 80 % of the (at least tau) frames they share hold one object: they are merged; "
                                "boxes more than half the usual size off the track's path (tau/3 frames each side) "
                                "are dropped; a stretch of tau or more frames where a track repeats another's boxes "
-                               "is dropped from it if it turns where the stretch begins or ends, and a track so cut "
-                               "short is continued by a spare cluster that goes on where it ended, or by a track "
+                               "is dropped from it if it turns where the stretch begins or ends (with any piece of "
+                               "under tau frames it leaves on its own), and a track so cut short is continued by a "
+                               "spare cluster that goes on where it ended, or by a track "
                                "that takes its object over there; look-alike tracks that traded objects where they "
                                "met exchange their continuations back")
     own_frames: bool = _p(True, "robust, n_objects = 0: clusters are ranked by the frames no kept cluster is near "

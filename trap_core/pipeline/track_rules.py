@@ -19,9 +19,9 @@ from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph
 from trap_core.robust import (GroupBoxes, colour_overlap, colour_shares, continue_to_border, continue_tracks,
-                              drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_strays,
-                              end_at_exits, extend_from_twins, fill_gaps, grow_boxes, join_handovers, join_returns,
-                              keep_one_size, lookalike_tracks, mend_shared_stretches, merge_duplicates,
+                              drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_stray_pieces,
+                              drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes, join_handovers,
+                              join_returns, keep_one_size, lookalike_tracks, mend_shared_stretches, merge_duplicates,
                               separate_groups, swap_at_crossings, through_groups)
 
 
@@ -134,6 +134,7 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
     tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, tracks_of)
     tracks = drop_shared_stretches(tracks, n_frames, params.tau, motion_window)
     tracks = drop_repeated_pieces(tracks, motion_window)
+    tracks = [t for t in (drop_stray_pieces(t, n_frames, motion_window, params.tau) for t in tracks) if len(t)]
     tracks = [end_at_exits(t, width, height, motion_window) for t in tracks]
     tracks = continue_tracks(tracks, summary, spare, n_frames, width, height, motion_window, params.eps, tracks_of)
     tracks = [end_at_exits(t, width, height, motion_window) for t in tracks]  # and the continuations'

@@ -24,15 +24,15 @@ from trap_core.robust.rejoin import (CUT_SHARE, BorderContacts, border_contacts,
 from trap_core.robust.returns import join_returns
 from trap_core.robust.sizes import keep_one_size
 from trap_core.robust.still import drop_still_regions
-from trap_core.robust.strays import drop_strays
+from trap_core.robust.strays import drop_stray_pieces, drop_strays
 from trap_core.robust.through_groups import GroupBoxes, through_groups
 
 __all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderContacts", "GroupBoxes", "alone_at_ends",
            "border_contacts", "border_share", "camera_paths", "camera_transforms", "cluster_world_speed",
            "colour_overlap", "colour_shares", "continue_to_border", "continue_tracks", "drop_repeated_pieces",
-           "drop_shared_stretches", "drop_still_regions", "drop_strays", "end_at_exits", "extend_from_twins",
-           "fill_gaps", "grow_boxes", "hand_to_owners", "held_share", "join_handovers", "join_returns", "keep_one_size",
-           "lookalike_tracks", "mend_shared_stretches", "merge_duplicates", "moves_in_hops", "pattern_sizes",
-           "reaches_border", "rejoin_fragments", "separate_groups", "shadowed", "split_mixed", "stays_with_scene",
-           "steady_patterns", "swap_at_crossings", "through_groups", "whole_patterns_apart", "without_backdrop",
-           "world_speed", "world_steps"]
+           "drop_shared_stretches", "drop_still_regions", "drop_stray_pieces", "drop_strays", "end_at_exits",
+           "extend_from_twins", "fill_gaps", "grow_boxes", "hand_to_owners", "held_share", "join_handovers",
+           "join_returns", "keep_one_size", "lookalike_tracks", "mend_shared_stretches", "merge_duplicates",
+           "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments", "separate_groups", "shadowed",
+           "split_mixed", "stays_with_scene", "steady_patterns", "swap_at_crossings", "through_groups",
+           "whole_patterns_apart", "without_backdrop", "world_speed", "world_steps"]

@@ -117,9 +117,10 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
     another that takes its object over: the later one is appended to the earlier and dropped.
 
     The later track must start at most ``window`` frames after the earlier one ends, and where it
-    starts more than ``window`` frames before that end, hold a third track's object there (the
+    starts more than ``window`` frames before that end, hold an object tracked already there (the
     centre of the smaller box in the other's) until then: it began on another object and stayed
-    with it while the two were in one place. Of its frames after that end, those where it
+    with it while the two were in one place, or on the earlier track's own object (a second
+    cluster on it that goes on where the first ends). Of its frames after that end, those where it
     repeats a third track's box (IoU at least ``min_iou``: it is still on the other object) do
     not count; it must keep at least ``window`` of them, the first at most ``window`` frames
     after the end, and over the first ``window`` of them be at most ``reach`` px (median) from
@@ -151,8 +152,8 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
             if other == slot or int(later.frames[0]) > end + window:
                 continue
             thirds = [t for k, t in enumerate(out) if k not in (slot, other)]
-            on_third = repeats_others(later, thirds, min_iou, centred=True)
-            if np.any(~on_third & (later.frames < end - window)):
+            on_known = repeats_others(later, [t for k, t in enumerate(out) if k != other], min_iou, centred=True)
+            if np.any(~on_known & (later.frames < end - window)):
                 continue
             own = ~repeats_others(later, thirds, min_iou)
             rows = (later.frames > end) & own

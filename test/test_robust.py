@@ -1624,6 +1624,43 @@ def test_a_track_that_starts_late_is_continued_back_by_the_cluster_that_led_to_i
                                built.__getitem__)[0]) == 60
 
 
+def test_a_cluster_that_hops_between_objects_continues_each_where_it_holds_it() -> None:
+    """Cluster 0 holds object A in frames 0-37 and object B, 185 px away, in frames 62-99. Track
+    1 holds A from frame 40, track 2 holds B until frame 59: the cluster's early boxes go before
+    track 1's start, its late ones after track 2's end (each of its frames lent once)."""
+    from trap_core.clustering import summarise
+    from trap_core.robust import continue_tracks
+    t = np.arange(100, dtype=float)
+    a = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    b = a + [0.0, 185.0, 0.0, 0.0]
+    centre_a, centre_b = a[:, :2] + a[:, 2:4] / 2, b[:, :2] + b[:, 2:4] / 2
+    summary = summarise(np.array([0, 0]), _paths([(0, centre_a[:38]), (62, centre_b[62:])]), np.ones(2), 100)
+    hopping = _as_track(0, np.r_[0:38, 62:100], np.vstack([a[:38], b[62:]]))
+    frames = np.arange(100)
+    tracks = [_as_track(1, frames[40:], a[40:]), _as_track(2, frames[:60], b[:60])]
+    out = continue_tracks(tracks, summary, np.array([0]), 100, 640, 480, 12, 40.0, {0: hopping}.__getitem__)
+    assert out[0].frames.tolist() == list(range(38)) + list(range(40, 100))
+    assert out[1].frames.tolist() == list(range(60)) + list(range(62, 100))
+    np.testing.assert_allclose(out[1].boxes[60:], b[62:])
+
+
+def test_a_track_continued_back_in_time_is_continued_again_from_its_new_start() -> None:
+    """The track holds frames 60-99; cluster 0 covers 35-50 where its motion, read back, puts
+    the object, cluster 1 covers 0-25, more than 12 frames before the track's start but within
+    12 of cluster 0's first frame: both go before the track's start, one after the other."""
+    from trap_core.clustering import summarise
+    from trap_core.robust import continue_tracks
+    t = np.arange(100, dtype=float)
+    boxes = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    centres = boxes[:, :2] + boxes[:, 2:4] / 2
+    summary = summarise(np.array([0, 1]), _paths([(35, centres[35:51]), (0, centres[:26])]), np.ones(2), 100)
+    built = {0: _as_track(0, np.arange(35, 51), boxes[35:51]), 1: _as_track(0, np.arange(26), boxes[:26])}
+    late = _as_track(1, np.arange(60, 100), boxes[60:])
+    out = continue_tracks([late], summary, np.array([0, 1]), 100, 640, 480, 12, 40.0, built.__getitem__)
+    assert out[0].frames.tolist() == list(range(26)) + list(range(35, 51)) + list(range(60, 100))
+    np.testing.assert_allclose(out[0].boxes[:26], boxes[:26])
+
+
 def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_ended() -> None:
     """The track holds frames 0-59 of an object moving right; cluster 0 goes on from frame 62
     where that motion puts it, cluster 1 starts at the same time 185 px away, cluster 2 goes on
@@ -1843,6 +1880,26 @@ def test_a_track_that_goes_on_where_a_duplicate_of_it_ended_is_appended() -> Non
     own_start = second.copy()
     own_start[:10] += [0.0, -185.0, 0.0, 0.0]
     assert len(join_handovers([tracks[0], _as_track(2, frames[30:], own_start)], 100, 12, 40.0)) == 2
+
+
+def test_a_track_that_takes_over_from_beside_another_tracks_box_is_appended() -> None:
+    """As above, but track 2 travels beside track 3's box, overlapping it (IoU 0.2, neither
+    centre in the other box): where look-alikes meet, the box placed on one can be shifted off
+    it. It was on a tracked object still, and takes over. Boxes that never touch track 3's
+    held something of their own."""
+    from trap_core.robust import join_handovers
+    t = np.arange(100, dtype=float)
+    boxes = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    below = boxes + [0.0, 100.0, 0.0, 0.0]
+    frames = np.arange(100)
+    beside = np.vstack([below[20:60] + [0.0, 20.0, 0.0, 0.0], boxes[60:]])
+    tracks = [_as_track(1, frames[:60], boxes[:60]), _as_track(2, frames[20:], beside),
+              _as_track(3, frames, below)]
+    assert [len(t) for t in join_handovers(tracks, 100, 12, 40.0)] == [100, 100]
+    apart = beside.copy()
+    apart[:40] += [0.0, 15.0, 0.0, 0.0]
+    tracks[1] = _as_track(2, frames[20:], apart)
+    assert len(join_handovers(tracks, 100, 12, 40.0)) == 3
 
 
 def test_a_track_that_starts_beside_a_wandering_end_takes_over_when_it_is_the_only_one() -> None:

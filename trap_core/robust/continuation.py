@@ -31,6 +31,10 @@ from trap_core.clustering import (ClusterSummary, Track, box_centres, box_iou, b
 from trap_core.robust.duplicates import repeats_others, same_boxes, shared_stretches
 from trap_core.robust.motion import straight_line
 
+# An IoU above zero: boxes that overlap at all. Where look-alikes meet, a box placed on one of
+# them can end up shifted off it, beside the other track's box rather than on it.
+ANY_OVERLAP = float(np.finfo(float).tiny)
+
 
 def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates: np.ndarray, n_frames: int,
                     width: float, height: float, window: int, reach: float, build: Callable[[int], Track],
@@ -40,13 +44,15 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     the same way back in time, pieces that start more than ``window`` frames after the track's
     previous one (or the video's start).
 
-    A candidate continues a piece if it covers at least ``window`` frames after the piece's last
-    one and before the next piece, the first of them at most ``window`` frames after it, and
-    there its mean position is at most ``reach`` px from where the piece's motion (a straight
+    A candidate continues a piece if it covers at least ``window`` frames not used up (below)
+    after the piece's last one and before the next piece, the first of them at most ``window``
+    frames after it, and there its mean position is at most ``reach`` px from where the piece's motion (a straight
     line through its last ``window`` box centres) puts it; the closest one is taken, and its
     boxes (``build(cluster)``) between the two pieces are appended, except where they repeat
     another track's box (IoU at least ``min_iou``, or the centre of the smaller box lies in the
-    other: boxes around an object tracked already). A candidate continues one piece only. Where
+    other: boxes around an object tracked already). A candidate's frames in the gap it fills are
+    used up (a cluster that hops between objects can continue one track with its early frames and
+    another with its late ones), and a piece it makes is continued in turn. Where
     the piece's last box reaches the border of the ``width`` x ``height`` frames (its object is
     leaving), the candidate's first box appended must reach it too: one that starts clear of the
     border is something else the patterns found once the object was gone. Back in time, read
@@ -54,27 +60,31 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     cluster too short to be selected) gets that cluster's boxes before its start.
     """
     out = list(tracks)
-    taken: set[int] = set()
+    lent = np.zeros(summary.covered.shape, dtype=bool)  # (cluster, frame) whose box went to a track
     for slot in range(len(out)):
         for backward in (False, True):
-            frames = out[slot].frames
-            # (the piece's edge frame, the track's other piece or the video's end beyond the gap)
-            bounds = np.r_[-1, frames] if backward else np.append(frames, n_frames)
-            gaps = np.flatnonzero(np.diff(bounds) > window)
-            edges = bounds[gaps + 1] if backward else bounds[gaps]
-            limits = bounds[gaps] if backward else bounds[gaps + 1]
-            for edge, limit in zip(edges.tolist(), limits.tolist()):
-                found = _continuation(out, slot, edge, limit, summary, candidates, taken, (width, height),
-                                      window, reach, build, min_iou)
-                if found is not None:
-                    follow, cluster = found
-                    out[slot] = with_frames(out[slot], follow.frames, follow.boxes, follow.score, follow.points)
-                    taken.add(cluster)
+            grown = True
+            while grown:  # a continuation makes a new piece, whose own edge may be continued in turn
+                grown = False
+                frames = out[slot].frames
+                # (the piece's edge frame, the track's other piece or the video's end beyond the gap)
+                bounds = np.r_[-1, frames] if backward else np.append(frames, n_frames)
+                gaps = np.flatnonzero(np.diff(bounds) > window)
+                edges = bounds[gaps + 1] if backward else bounds[gaps]
+                limits = bounds[gaps] if backward else bounds[gaps + 1]
+                for edge, limit in zip(edges.tolist(), limits.tolist()):
+                    found = _continuation(out, slot, edge, limit, summary, candidates, lent, (width, height),
+                                          window, reach, build, min_iou)
+                    if found is not None:
+                        follow, cluster = found
+                        out[slot] = with_frames(out[slot], follow.frames, follow.boxes, follow.score, follow.points)
+                        lent[cluster, slice(limit + 1, edge) if backward else slice(edge + 1, limit)] = True
+                        grown |= len(follow) > 0
     return out
 
 
 def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary: ClusterSummary,
-                  candidates: np.ndarray, taken: set[int], view: tuple[float, float], window: int, reach: float,
+                  candidates: np.ndarray, lent: np.ndarray, view: tuple[float, float], window: int, reach: float,
                   build: Callable[[int], Track], min_iou: float) -> tuple[Track, int] | None:
     """The boxes of the closest candidate that continues track ``slot``'s piece beyond its
     frame ``edge`` up to (not including) frame ``limit`` (after its last frame; before its
@@ -89,8 +99,8 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
     lo, hi = (limit + 1, edge) if backward else (edge + 1, limit)
     near = []
     for cluster in candidates.tolist():
-        covered = np.flatnonzero(summary.covered[cluster, lo:hi]) + lo
-        if cluster in taken or covered.size < window:
+        covered = np.flatnonzero(summary.covered[cluster, lo:hi] & ~lent[cluster, lo:hi]) + lo
+        if covered.size < window:
             continue
         nearest = int(covered[-1] if backward else covered[0])
         if abs(nearest - edge) > window:
@@ -103,6 +113,7 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
     for _, cluster in sorted(near):
         follow = build(cluster)
         follow = in_rows(follow, (follow.frames >= lo) & (follow.frames < hi))
+        follow = in_rows(follow, ~lent[cluster, follow.frames])
         follow = in_rows(follow, ~repeats_others(follow, others, min_iou, centred=True))
         if crossing and not (len(follow) and reaches_border(follow.boxes[-1:] if backward else follow.boxes[:1],
                                                             *view)[0]):
@@ -117,9 +128,9 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
     another that takes its object over: the later one is appended to the earlier and dropped.
 
     The later track must start at most ``window`` frames after the earlier one ends, and where it
-    starts more than ``window`` frames before that end, hold an object tracked already there (the
-    centre of the smaller box in the other's) until then: it began on another object and stayed
-    with it while the two were in one place, or on the earlier track's own object (a second
+    starts more than ``window`` frames before that end, hold an object tracked already there (its
+    box overlaps another track's, :data:`ANY_OVERLAP`) until then: it began on another object and
+    stayed with it while the two were in one place, or on the earlier track's own object (a second
     cluster on it that goes on where the first ends). Of its frames after that end, those where it
     repeats a third track's box (IoU at least ``min_iou``: it is still on the other object) do
     not count; it must keep at least ``window`` of them, the first at most ``window`` frames
@@ -152,7 +163,7 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
             if other == slot or int(later.frames[0]) > end + window:
                 continue
             thirds = [t for k, t in enumerate(out) if k not in (slot, other)]
-            on_known = repeats_others(later, [t for k, t in enumerate(out) if k != other], min_iou, centred=True)
+            on_known = repeats_others(later, [t for k, t in enumerate(out) if k != other], ANY_OVERLAP)
             if np.any(~on_known & (later.frames < end - window)):
                 continue
             own = ~repeats_others(later, thirds, min_iou)

@@ -1947,8 +1947,9 @@ def test_a_short_piece_apart_from_the_rest_of_its_track_is_dropped() -> None:
 
 def test_a_piece_of_a_track_on_another_tracks_object_is_dropped() -> None:
     """Track 2 holds its own object in frames 0-39 and, after a 30-frame gap, track 1's object
-    in 70-99 (IoU 0.8, a box inside track 1's, or one whose centre is in it): that piece goes. A piece on track 1's object
-    in only half its frames stays. A piece after a jump across 100 px goes as one after a gap."""
+    in 70-99 (IoU 0.8, a box inside track 1's, or one whose centre is in it): that piece goes. A
+    piece on track 1's object in only half its frames stays. A piece after a jump across 100 px
+    goes as one after a gap."""
     from trap_core.robust import drop_repeated_pieces
     t = np.arange(100, dtype=float)
     first = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])

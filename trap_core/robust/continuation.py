@@ -44,20 +44,20 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     the same way back in time, pieces that start more than ``window`` frames after the track's
     previous one (or the video's start).
 
-    A candidate continues a piece if it covers at least ``window`` frames not used up (below)
-    after the piece's last one and before the next piece, the first of them at most ``window``
-    frames after it, and there its mean position is at most ``reach`` px from where the piece's motion (a straight
-    line through its last ``window`` box centres) puts it; the closest one is taken, and its
-    boxes (``build(cluster)``) between the two pieces are appended, except where they repeat
+    A candidate continues a piece if it covers at least ``window`` frames not used up (below) after
+    the piece's last one and before the next piece, the first of them at most ``window`` frames
+    after it, and there its mean position is at most ``reach`` px from where the piece's motion (a
+    straight line through its last ``window`` box centres) puts it; the closest one is taken, and
+    its boxes (``build(cluster)``) between the two pieces are appended, except where they repeat
     another track's box (IoU at least ``min_iou``, or the centre of the smaller box lies in the
     other: boxes around an object tracked already). A candidate's frames in the gap it fills are
     used up (a cluster that hops between objects can continue one track with its early frames and
-    another with its late ones), and a piece it makes is continued in turn. Where
-    the piece's last box reaches the border of the ``width`` x ``height`` frames (its object is
-    leaving), the candidate's first box appended must reach it too: one that starts clear of the
-    border is something else the patterns found once the object was gone. Back in time, read
-    first for last: a track whose cluster began late (its object's first patterns went to a
-    cluster too short to be selected) gets that cluster's boxes before its start.
+    another with its late ones), and a piece it makes is continued in turn. Where the piece's last
+    box reaches the border of the ``width`` x ``height`` frames (its object is leaving), the
+    candidate's first box appended must reach it too: one that starts clear of the border is
+    something else the patterns found once the object was gone. Back in time, read first for last: a
+    track whose cluster began late (its object's first patterns went to a cluster too short to be
+    selected) gets that cluster's boxes before its start.
     """
     out = list(tracks)
     lent = np.zeros(summary.covered.shape, dtype=bool)  # (cluster, frame) whose box went to a track

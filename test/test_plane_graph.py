@@ -412,6 +412,10 @@ def test_the_line_outside_a_sharp_edge_does_not_widen_the_box() -> None:
     assert not outer[np.isin(held, labels[[30, 40, 49], [40, 20, 40]])].any()  # the inner lines and the body
     assert graph.nodes_box(held[outer], pixel=1.0, around=np.array(rectangle)).tolist() == rectangle
     assert graph.nodes_box(held[outer], around=np.array(rectangle)).tolist() == [19.0, 29.0, 42.0, 22.0]
+    mask = np.isin(np.arange(graph.n_nodes), held)  # regions given as a mask: the same boxes
+    assert graph.nodes_box(mask, pixel=1.0).tolist() == rectangle
+    around = np.array([20.5, 30.25, 0.1, 0.2])  # no regions: the box around, as it is
+    assert graph.nodes_box(np.zeros(0, dtype=np.int64), pixel=1.0, around=around).tolist() == around.tolist()
 
 
 def test_a_coloured_object_in_a_jpeg_frame_keeps_out_of_a_textured_ground() -> None:

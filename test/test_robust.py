@@ -243,9 +243,9 @@ def test_rejoin_never_joins_a_fragment_that_goes_along_with_another_object() -> 
     assert labels[0] == labels[2] != labels[1]
 
 
-def test_clusters_go_along_where_they_share_most_frames_close_by_read_in_any_chunks(monkeypatch) -> None:
-    """Pairs of clusters are compared a chunk of pairs at a time (a textured scene has millions):
-    the answer is the same in chunks of one pair."""
+def test_clusters_go_along_where_they_share_most_frames_close_by() -> None:
+    """Two parts of one object (4 and 6 px apart in the frames both cover) go along; a part seen
+    beside another for too few of its frames, and a cluster 90 px away, do not."""
     import trap_core.robust.rejoin as rejoin
     from trap_core.clustering import summarise
     line = lambda start, n, y: np.column_stack([np.arange(start, start + n) * 2.0, np.full(n, y)])  # noqa: E731
@@ -256,9 +256,6 @@ def test_clusters_go_along_where_they_share_most_frames_close_by_read_in_any_chu
     covered = summary.covered.astype(float)
     expected = np.zeros((6, 6), dtype=bool)
     expected[0, 1] = expected[1, 0] = expected[2, 3] = expected[3, 2] = True
-    whole = rejoin._going_along(summary, covered @ covered.T, 100, 10.0)
-    monkeypatch.setattr(rejoin, "PAIR_CELLS", 200)  # one pair at a time
-    np.testing.assert_array_equal(whole, expected)
     np.testing.assert_array_equal(rejoin._going_along(summary, covered @ covered.T, 100, 10.0), expected)
 
 

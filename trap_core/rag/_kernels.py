@@ -354,3 +354,68 @@ def sets_nodes(face_sets: np.ndarray, he_origin: np.ndarray, face_half_edges: np
         nodes[start:n] = np.sort(nodes[start:n])
         ends[row] = n
     return nodes[:n], ends
+
+
+@nb.njit(cache=True, nogil=True)
+def outer_lines(bbox: np.ndarray, thickness: np.ndarray, nearest: np.ndarray, nodes: np.ndarray,
+                thin_below: float, around: np.ndarray) -> np.ndarray:
+    """Which of ``nodes`` are edge lines outside the others (:meth:`PlaneGraph.outer_lines`):
+    thinner than ``thin_below``, their nearest neighbour in colour (``nearest``, -1: none)
+    neither one of ``nodes`` nor, where ``around`` (x, y, w, h) has 4 values, inside it."""
+    held = np.zeros(thickness.size, dtype=np.bool_)
+    for node in nodes:
+        held[node] = True
+    outer = np.zeros(nodes.size, dtype=np.bool_)
+    for i in range(nodes.size):
+        if thickness[nodes[i]] >= thin_below:
+            continue
+        other = nearest[nodes[i]]
+        if other < 0 or held[other]:
+            continue
+        if around.size == 4 and (bbox[other, 0] >= around[0] and bbox[other, 1] >= around[1]
+                                 and bbox[other, 2] < around[0] + around[2]
+                                 and bbox[other, 3] < around[1] + around[3]):
+            continue
+        outer[i] = True
+    return outer
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _nodes_sides(bbox: np.ndarray, nodes: np.ndarray, keep: np.ndarray, around: np.ndarray) -> np.ndarray:
+    """(x0, y0, x1, y1), x1 and y1 exclusive, around the ``nodes`` that ``keep`` and the box
+    ``around`` (x, y, w, h: 4 values, or none)."""
+    sides = np.array([np.inf, np.inf, -np.inf, -np.inf])
+    for i in range(nodes.size):
+        if keep[i]:
+            node = nodes[i]
+            sides[0] = min(sides[0], bbox[node, 0])
+            sides[1] = min(sides[1], bbox[node, 1])
+            sides[2] = max(sides[2], bbox[node, 2] + 1)
+            sides[3] = max(sides[3], bbox[node, 3] + 1)
+    if around.size == 4:
+        sides[0] = min(sides[0], around[0])
+        sides[1] = min(sides[1], around[1])
+        sides[2] = max(sides[2], around[0] + around[2])
+        sides[3] = max(sides[3], around[1] + around[3])
+    return sides
+
+
+@nb.njit(cache=True, nogil=True)
+def nodes_box(bbox: np.ndarray, thickness: np.ndarray, nearest: np.ndarray, nodes: np.ndarray,
+              around: np.ndarray, thin_below: float, reach: float) -> np.ndarray:
+    """(x, y, w, h) around ``nodes`` and ``around`` (:meth:`PlaneGraph.nodes_box`): where
+    ``thin_below`` > 0, each side pulled in past the edge lines outside the others
+    (:func:`outer_lines`) when they push it out by at most ``reach``. No nodes: ``around``."""
+    if nodes.size == 0:
+        return around.copy()
+    whole = _nodes_sides(bbox, nodes, np.ones(nodes.size, dtype=np.bool_), around)
+    if thin_below > 0:
+        outer = outer_lines(bbox, thickness, nearest, nodes, thin_below, around)
+        if outer.any() and (around.size == 4 or not outer.all()):
+            inner = _nodes_sides(bbox, nodes, ~outer, around)
+            for side in range(2):
+                if inner[side] - whole[side] <= reach:
+                    whole[side] = inner[side]
+                if whole[side + 2] - inner[side + 2] <= reach:
+                    whole[side + 2] = inner[side + 2]
+    return np.array([whole[0], whole[1], whole[2] - whole[0], whole[3] - whole[1]])

@@ -8,6 +8,8 @@ import numpy as np
 
 from trap_core.rag._kernels import (drop_short_contacts, region_stats, rotation_system, sets_nodes,
                                     trace_boundary_graph, trace_faces)
+from trap_core.rag._kernels import nodes_box as _nodes_box
+from trap_core.rag._kernels import outer_lines as _outer_lines
 from trap_core.rag.errors import GraphError
 
 BACKDROP_SHARE = 0.5  # a region over this share of the frame is the backdrop: only one can be
@@ -16,6 +18,11 @@ BACKDROP_SHARE = 0.5  # a region over this share of the frame is the backdrop: o
 # either side, and Felzenszwalb's method makes each such line a region of its own (longer than
 # ``min_size``); a line one pixel wide is about 1 thick, a band two pixels wide about 2.
 EDGE_LINE = 1.5
+
+
+def _box_or_none(around: np.ndarray | None) -> np.ndarray:
+    """``around`` (x, y, w, h) as the compiled kernels take it: no values for no box."""
+    return np.zeros(0) if around is None else np.asarray(around, dtype=np.float64)
 
 
 def unknown_step() -> np.ndarray:
@@ -76,21 +83,14 @@ class PlaneGraph:
         out by at most an edge line's width: the line outside an object's edge is ground in the
         frame (smoothing blended the object's colour into it for the segmentation), and counted
         in, it widens a box by a pixel all round (a fifth of the area of a 20 px disc).
+        Compiled: tracks ask for a box of every frame many times over.
         """
         nodes = np.asarray(nodes)
-        nodes = np.flatnonzero(nodes) if nodes.dtype == bool else nodes
-        whole = self._box(nodes, around)
-        if pixel <= 0:
-            return whole
-        outer = self.outer_lines(nodes, pixel, around)
-        if not outer.any() or (around is None and outer.all()):
-            return whole
-        inner = self._box(nodes[~outer], around)
-        reach = EDGE_LINE * max(pixel, 1.0)  # a box's side moves by whole frame pixels
-        (low, high), (inner_low, inner_high) = (whole[:2], whole[:2] + whole[2:]), (inner[:2], inner[:2] + inner[2:])
-        low = np.where(inner_low - low <= reach, inner_low, low)
-        high = np.where(high - inner_high <= reach, inner_high, high)
-        return np.r_[low, high - low]
+        nodes = np.flatnonzero(nodes) if nodes.dtype == bool else nodes.astype(np.int64, copy=False)
+        if pixel > 0:  # a box's side moves by whole frame pixels
+            return _nodes_box(self.bbox, self.thickness, self.nearest_in_colour, nodes, _box_or_none(around),
+                              EDGE_LINE * pixel, EDGE_LINE * max(pixel, 1.0))
+        return _nodes_box(self.bbox, self.thickness, self.nearest_in_colour, nodes, _box_or_none(around), 0.0, 0.0)
 
     def outer_lines(self, nodes: np.ndarray, pixel: float, around: np.ndarray | None = None) -> np.ndarray:
         """(len(nodes),) which of the regions ``nodes`` (indices) are edge lines (under
@@ -99,16 +99,8 @@ class PlaneGraph:
         inside the box ``around`` (x, y, w, h) has a colour nearer their own than any that is.
         Smoothing blends each side of a sharp edge with the other: the line on the object's side
         keeps most of the object's colour, the one outside most of the ground's."""
-        thin = self.thickness[nodes] < EDGE_LINE * pixel
-        outer = thin.copy()
-        nearest = self.nearest_in_colour[nodes[thin]]
-        free = (nearest >= 0) & ~np.isin(nearest, nodes)
-        if around is not None:
-            box = self.bbox[nearest]
-            free &= ~((box[:, 0] >= around[0]) & (box[:, 1] >= around[1]) & (box[:, 2] < around[0] + around[2])
-                      & (box[:, 3] < around[1] + around[3]))
-        outer[thin] = free
-        return outer
+        return _outer_lines(self.bbox, self.thickness, self.nearest_in_colour, np.asarray(nodes, dtype=np.int64),
+                            EDGE_LINE * pixel, _box_or_none(around))
 
     @cached_property
     def nearest_in_colour(self) -> np.ndarray:
@@ -123,18 +115,6 @@ class PlaneGraph:
         nearest = np.full(self.n_nodes, -1, dtype=np.int32)  # held with the graph: kept small
         nearest[origin[order][first]] = other[order][first]
         return nearest
-
-    def _box(self, nodes: np.ndarray, around: np.ndarray | None) -> np.ndarray:
-        """(x, y, w, h) around the regions ``nodes`` (indices) and the box ``around``; ``around``
-        alone where there are no regions (at least one of the two is given)."""
-        if nodes.size:
-            parts = self.bbox[nodes]
-            x0, y0, x1, y1 = parts[:, 0].min(), parts[:, 1].min(), parts[:, 2].max() + 1, parts[:, 3].max() + 1
-            if around is not None:
-                x0, y0 = min(x0, around[0]), min(y0, around[1])
-                x1, y1 = max(x1, around[0] + around[2]), max(y1, around[1] + around[3])
-            return np.array([x0, y0, x1 - x0, y1 - y0], dtype=float)
-        return np.asarray(around, dtype=float).copy()
 
     @cached_property
     def thickness(self) -> np.ndarray:

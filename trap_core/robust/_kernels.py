@@ -87,3 +87,30 @@ def matched_regions(centroid: np.ndarray, area: np.ndarray, label: np.ndarray, n
             next_rows[k] = best_next[i]
             k += 1
     return rows, next_rows
+
+
+@nb.njit(cache=True, nogil=True)
+def mean_pair_distances(first: np.ndarray, second: np.ndarray, covered: np.ndarray, start: np.ndarray,
+                        offsets: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Per pair (``first[i]``, ``second[i]``) of clusters: the mean distance between their paths
+    (``start``, ``offsets``, ``points``: :class:`~trap_core.clustering.Trajectories`) over the
+    frames both cover (``covered``: (C, n_frames)); NaN where there are none. Only the frames
+    of the two spans are read, not the whole video's."""
+    out = np.full(first.size, np.nan)
+    for i in range(first.size):
+        a, b = first[i], second[i]
+        lo = max(start[a], start[b])
+        hi = min(start[a] + offsets[a + 1] - offsets[a], start[b] + offsets[b + 1] - offsets[b])
+        total = 0.0
+        count = 0
+        for frame in range(lo, hi):
+            if covered[a, frame] and covered[b, frame]:
+                pa = offsets[a] + frame - start[a]
+                pb = offsets[b] + frame - start[b]
+                dx = points[pa, 0] - points[pb, 0]
+                dy = points[pa, 1] - points[pb, 1]
+                total += np.sqrt(dx * dx + dy * dy)
+                count += 1
+        if count:
+            out[i] = total / count
+    return out

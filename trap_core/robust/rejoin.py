@@ -35,6 +35,7 @@ from scipy import sparse
 
 from trap_core.clustering import ClusterSummary, Trajectories, reaches_border, summarise
 from trap_core.mining import MiningResult
+from trap_core.robust._kernels import mean_pair_distances
 from trap_core.robust.camera import map_points
 
 
@@ -56,7 +57,6 @@ class BorderContacts(NamedTuple):
 # a look-alike passing by).
 ALONG_FRAMES = 4
 ALONG_SHARE = 0.8
-PAIR_CELLS = 1 << 21  # pairs x frames compared at once by _going_along
 RIVAL_RATIO = 2.0  # a fragment continues another whatever its structures only where no rival comes this close
 CUT_SHARE = 0.5  # a cluster (pattern) with more of its occurrences cut by the view is no evidence of motion
 
@@ -156,17 +156,8 @@ def _going_along(summary: ClusterSummary, overlap: np.ndarray, min_frames: int, 
     if first.size == 0:
         return along
     paths = summary.paths
-    involved, slot = np.unique(np.r_[first, second], return_inverse=True)
-    first_row, second_row = slot[:first.size], slot[first.size:]
-    position = np.zeros((involved.size, summary.covered.shape[1], 2))  # each involved cluster's path, 0 elsewhere
-    for row, cluster in enumerate(involved.tolist()):
-        position[row, paths.start[cluster]:paths.end[cluster] + 1] = paths.of(cluster)
-    step = max(1, PAIR_CELLS // summary.covered.shape[1])  # pairs at a time: memory stays bounded on long chunks
-    for lo in range(0, first.size, step):
-        a, b = first[lo:lo + step], second[lo:lo + step]
-        both = summary.covered[a] & summary.covered[b]
-        distance = np.linalg.norm(position[first_row[lo:lo + step]] - position[second_row[lo:lo + step]], axis=2)
-        along[a, b] = along[b, a] = (distance * both).sum(axis=1) / both.sum(axis=1) <= reach
+    distance = mean_pair_distances(first, second, summary.covered, paths.start, paths.offsets, paths.points)
+    along[first, second] = along[second, first] = distance <= reach
     return along
 
 

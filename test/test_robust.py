@@ -901,7 +901,7 @@ def test_a_sparse_track_grows_against_its_box_interpolated_through_short_gaps() 
 def test_a_still_region_the_object_crosses_leaves_its_box_and_its_parts_stay() -> None:
     """Every face of the object (spots on its edges, none inside) holds the block it crosses: the
     core box becomes the block."""
-    from trap_core.clustering import build_track
+    from trap_core.clustering import build_track, frame_cores
     from trap_core.mining import MiningParams, mine
     from trap_core.robust import drop_still_regions
     params = TrapParams(segmentation="colour")
@@ -923,7 +923,8 @@ def test_a_still_region_the_object_crosses_leaves_its_box_and_its_parts_stay() -
         labels[pattern] = 0 if np.all(np.abs(result.occ_position[rows, 0] - x0 - 17) < 18) else -1
     built = build_track(result, labels, 0, 1, graphs, core_share=0.8)
     assert np.any(built.boxes[:, 2] >= 60)  # without the rule the block is in the box while crossed
-    trimmed = drop_still_regions(built, result, labels, graphs, np.tile(np.eye(3), (30, 1, 1)), 0.8, lag=2)
+    cores = frame_cores(result, np.flatnonzero(labels == 0), graphs, 0.8)
+    trimmed = drop_still_regions(built, cores, graphs, np.tile(np.eye(3), (30, 1, 1)), lag=2)
     np.testing.assert_allclose(trimmed.boxes, [truth[f] for f in trimmed.frames])
 
 
@@ -1995,6 +1996,20 @@ def test_a_track_whose_pieces_change_size_keeps_the_sizes_it_holds_long_enough()
     assert len(keep_one_size([mixed], 25, 150)) == 0
     # each size held long enough for a track: an object, whole, then only a part of it in view
     assert len(keep_one_size([mixed], 25, 100)[0]) == 230
+
+
+def test_the_straight_line_through_box_centres_ignores_a_stray_box_and_frames_without_one() -> None:
+    """Centres on x = 5 + 2t, y = 40 - t in frames 10-20, one of them 60 px off and two frames
+    without a box: the Theil-Sen line is the true one; with fewer than three boxes, no line."""
+    from trap_core.robust.motion import straight_line
+    t = np.arange(30, dtype=float)
+    centres = np.column_stack([5 + 2 * t, 40 - t])
+    centres[14] += 60.0
+    centres[[12, 17]] = np.nan
+    velocity, origin = straight_line(centres, np.arange(10, 21))
+    np.testing.assert_allclose(velocity, [2.0, -1.0])
+    np.testing.assert_allclose(origin, [5.0, 40.0])
+    assert straight_line(centres, np.arange(11, 14)) is None  # 11 and 13 only
 
 
 def test_boxes_that_slide_onto_something_else_and_back_are_dropped_and_a_smooth_turn_is_kept() -> None:

@@ -136,7 +136,8 @@ def _intersection(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray,
 
 
 def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, track_id: int,
-                graphs: Sequence[PlaneGraph] | None = None, core_share: float = 0.0, pixel: float = 0.0) -> Track:
+                graphs: Sequence[PlaneGraph] | None = None, core_share: float = 0.0, pixel: float = 0.0,
+                cores: dict[int, tuple[np.ndarray, np.ndarray]] | None = None) -> Track:
     """Box of the cluster in each frame: around the regions of its patterns' occurrences there.
 
     With ``graphs`` and ``core_share > 0`` (ours), only the regions found in at least that
@@ -144,7 +145,8 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     region, :func:`core_regions`): a pattern that mixes the object with a background region it
     passes over then does not stretch the box to that whole background region. With ``pixel``
     too (frame pixels per pixel of the segmentation's size), edge lines alone do not widen the
-    box (:meth:`PlaneGraph.nodes_box`).
+    box (:meth:`PlaneGraph.nodes_box`). ``cores``: the cluster's :func:`frame_cores` at
+    ``core_share``, where the caller has them already.
 
     Confidence: the number of the cluster's patterns seen in the frame over the most seen in
     any frame (1 where the object shows all its structure).
@@ -164,9 +166,9 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     np.maximum.at(y1, inverse, boxes[:, 3])
     around = np.column_stack([x0, y0, x1 - x0 + 1, y1 - y0 + 1])
     if graphs is not None and core_share > 0:
-        for slot, (frame, face_sets, lifetimes) in enumerate(frame_face_sets(result, patterns)):
-            around[slot] = graphs[frame].nodes_box(core_regions(graphs[frame], face_sets, core_share, lifetimes)[0],
-                                                   pixel)
+        cores = frame_cores(result, patterns, graphs, core_share) if cores is None else cores
+        for slot, frame in enumerate(known.tolist()):
+            around[slot] = graphs[frame].nodes_box(cores[frame][0], pixel)
     seen = np.unique(np.column_stack([inverse, owner]), axis=0)[:, 0]
     per_frame = np.bincount(seen, minlength=known.size).astype(float)
     score = per_frame / per_frame.max() if per_frame.size else per_frame
@@ -187,6 +189,15 @@ def frame_face_sets(result: MiningResult, patterns: np.ndarray) -> Iterator[tupl
     known, starts = np.unique(frames[order], return_index=True)
     for frame, start, stop in zip(known.tolist(), starts, np.r_[starts[1:], order.size]):
         yield frame, result.occ_faces[rows[order[start:stop]]], lifetimes[order[start:stop]]
+
+
+def frame_cores(result: MiningResult, patterns: np.ndarray, graphs: Sequence[PlaneGraph],
+                share: float) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+    """Per frame where any of ``patterns`` occurs: the :func:`core_regions` of their occurrences
+    there. Read once per cluster: its track's boxes and the still-region rule
+    (:func:`trap_core.robust.drop_still_regions`) both start from them."""
+    return {frame: core_regions(graphs[frame], face_sets, share, lifetimes)
+            for frame, face_sets, lifetimes in frame_face_sets(result, patterns)}
 
 
 def core_regions(graph: PlaneGraph, face_sets: np.ndarray, share: float,

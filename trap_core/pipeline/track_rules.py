@@ -14,7 +14,7 @@ from functools import cached_property
 
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, Track, build_track, twin_clusters
+from trap_core.clustering import ClusterSummary, Track, build_track, frame_cores, twin_clusters
 from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph
@@ -57,11 +57,11 @@ class ClusterTracks:
         robust = params.method == "robust"
         lag = max(1, params.tau // 5)  # frames either side where a region is looked for again
         pixel = self._edge_pixel
-        built = build_track(self.mined, self.labels, cluster, 0, self.graphs, params.core_share if robust else 0.0,
-                            pixel)
-        if robust and params.still_regions and params.core_share > 0:
-            built = drop_still_regions(built, self.mined, self.labels, self.graphs, self.transforms,
-                                       params.core_share, lag, pixel)
+        share = params.core_share if robust else 0.0
+        cores = frame_cores(self.mined, np.flatnonzero(self.labels == cluster), self.graphs, share) if share else None
+        built = build_track(self.mined, self.labels, cluster, 0, self.graphs, share, pixel, cores)
+        if robust and params.still_regions and share > 0:
+            built = drop_still_regions(built, cores, self.graphs, self.transforms, lag, pixel)
         if robust and params.grow:
             built = grow_boxes(built, self.graphs, self.transforms, lag=lag, max_gap=2 * lag, pixel=pixel)
         if robust and params.fill_gaps:

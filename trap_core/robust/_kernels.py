@@ -114,3 +114,26 @@ def mean_pair_distances(first: np.ndarray, second: np.ndarray, covered: np.ndarr
         if count:
             out[i] = total / count
     return out
+
+
+@nb.njit(cache=True, nogil=True)
+def theil_sen(points: np.ndarray, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Velocity and position at frame 0 of the Theil-Sen line through ``points`` (k, 2) seen in
+    ``frames`` (k,, distinct, k >= 2): per axis, the median of the pairwise slopes, then the
+    median of the offsets (:func:`trap_core.robust.motion.straight_line`)."""
+    k = frames.size
+    slopes = np.empty(k * (k - 1) // 2)
+    offsets = np.empty(k)
+    velocity = np.empty(2)
+    origin = np.empty(2)
+    for axis in range(2):
+        n = 0
+        for i in range(k):
+            for j in range(i + 1, k):
+                slopes[n] = (points[j, axis] - points[i, axis]) / (frames[j] - frames[i])
+                n += 1
+        velocity[axis] = np.median(slopes)
+        for i in range(k):
+            offsets[i] = points[i, axis] - velocity[axis] * frames[i]
+        origin[axis] = np.median(offsets)
+    return velocity, origin

@@ -22,31 +22,28 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, core_regions, frame_face_sets
-from trap_core.mining import MiningResult
+from trap_core.clustering import Track
 from trap_core.rag import PlaneGraph
 from trap_core.robust.camera import map_points
 
 AREA_FACTOR = 2.0  # a background region the object passes over loses or regains what it hides
 
 
-def drop_still_regions(track: Track, result: MiningResult, pattern_labels: np.ndarray,
-                       graphs: Sequence[PlaneGraph], transforms: np.ndarray, share: float, lag: int,
-                       pixel: float = 0.0) -> Track:
+def drop_still_regions(track: Track, cores: dict[int, tuple[np.ndarray, np.ndarray]],
+                       graphs: Sequence[PlaneGraph], transforms: np.ndarray, lag: int, pixel: float = 0.0) -> Track:
     """The track with each core box rebuilt without the core regions that stand still.
 
     Parameters
     ----------
     track : Track
         As built from its cluster (:func:`trap_core.clustering.build_track`), with its points.
-    result, pattern_labels : MiningResult, (S,) array
-        The mining and the cluster of every spatio-temporal pattern (``track.cluster`` is one).
+    cores : dict
+        Per frame, the core regions of the track's cluster and the most shared ones
+        (:func:`trap_core.clustering.frame_cores`, at the track's ``core_share``).
     graphs : sequence of PlaneGraph
         Plane graph of every frame of the video.
     transforms : (n_frames, 3, 3) array
         Camera motion, frame 0 to frame ``t`` (:func:`trap_core.robust.camera_transforms`).
-    share : float
-        ``core_share`` of the core boxes.
     lag : int
         Frames before and after where a region is looked for again.
     pixel : float
@@ -60,12 +57,10 @@ def drop_still_regions(track: Track, result: MiningResult, pattern_labels: np.nd
     slot = np.full(len(graphs), -1)
     slot[track.frames] = np.arange(len(track))
     boxes = track.boxes.astype(float)
-    patterns = np.flatnonzero(pattern_labels == track.cluster)
-    for frame, face_sets, lifetimes in frame_face_sets(result, patterns):
+    for frame, (core, anchor) in cores.items():
         i = slot[frame]
         if i < 0:
             continue
-        core, anchor = core_regions(graphs[frame], face_sets, share, lifetimes)
         others = np.setdiff1d(core, anchor)
         if others.size == 0:
             continue

@@ -5,6 +5,8 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
+from trap_core.rag._kernels import nodes_box
+
 # An object's part keeps its area from frame to frame; a background region the object passes
 # over loses or regains the part it hides, and its barycentre drifts with the object.
 AREA_RATIO = 1.25
@@ -46,6 +48,53 @@ def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
             with_camera = min(with_camera, np.hypot(other_centroid[j, 0] - kx, other_centroid[j, 1] - ky))
         found[i] = with_track <= tolerance * np.sqrt(area[i]) + 1 and with_track < with_camera / 2
     return found
+
+
+@nb.njit(cache=True, nogil=True)
+def grow_boxes(offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
+               backdrop: np.ndarray, thickness: np.ndarray, nearest: np.ndarray, frames: np.ndarray,
+               slot: np.ndarray, core: np.ndarray, searched: np.ndarray, boxes: np.ndarray, cameras: np.ndarray,
+               lag: int, reach: float, tolerance: float, max_area: float, rounds: int, thin_below: float,
+               line_reach: float) -> None:
+    """Grow ``searched`` and ``boxes`` (T, 4) of a track's ``frames`` in place over the regions
+    that move with it (:func:`trap_core.robust.grow_boxes`). The video's regions are stacked:
+    frame ``t``'s are rows ``offsets[t]:offsets[t + 1]`` of ``bbox`` ... ``nearest`` (the last
+    numbered within its frame). ``slot``: row of ``core`` (the boxes motions are read between)
+    of each video frame, -1 where none; ``cameras`` (T, 2, 3, 3): the camera's motion from each
+    frame to ``lag`` frames before and after. ``thin_below`` > 0: edge lines left out of
+    ``boxes`` within ``line_reach`` (:func:`trap_core.rag._kernels.nodes_box`)."""
+    n_frames = offsets.size - 1
+    for i in range(frames.size):
+        frame = frames[i]
+        lo, hi = offsets[frame], offsets[frame + 1]
+        others = np.empty(2, dtype=np.int64)
+        sides = np.empty(2, dtype=np.int64)
+        n_sides = 0
+        for side, other in enumerate((frame - lag, frame + lag)):
+            if 0 <= other < n_frames and slot[other] >= 0:
+                others[n_sides] = other
+                sides[n_sides] = side
+                n_sides += 1
+        if n_sides == 0:
+            continue
+        for round_ in range(rounds if n_sides == 2 else 1):
+            moving = np.zeros(hi - lo, dtype=np.bool_) if round_ == 0 else np.ones(hi - lo, dtype=np.bool_)
+            for k in range(n_sides):
+                olo, ohi = offsets[others[k]], offsets[others[k] + 1]
+                found = moving_regions(bbox[lo:hi], centroid[lo:hi], area[lo:hi], label[lo:hi], centroid[olo:ohi],
+                                       area[olo:ohi], label[olo:ohi], core[slot[frame]], core[slot[others[k]]],
+                                       searched[i], cameras[i, sides[k]], reach, tolerance, max_area)
+                moving = (moving | found) if round_ == 0 else (moving & found)
+            moving &= ~backdrop[lo:hi]
+            held = np.flatnonzero(moving)
+            if held.size == 0:
+                break
+            grown = nodes_box(bbox[lo:hi], thickness[lo:hi], nearest[lo:hi], held, searched[i], 0.0, 0.0)
+            if np.all(grown == searched[i]):
+                break
+            searched[i] = grown
+            boxes[i] = nodes_box(bbox[lo:hi], thickness[lo:hi], nearest[lo:hi], held, boxes[i], thin_below,
+                                 line_reach) if thin_below > 0 else grown
 
 
 @nb.njit(cache=True, nogil=True)

@@ -26,7 +26,8 @@ import numpy as np
 
 from trap_core.clustering import Track
 from trap_core.rag import PlaneGraph
-from trap_core.robust._kernels import moving_regions
+from trap_core.rag.plane_graph import EDGE_LINE
+from trap_core.robust._kernels import grow_boxes as _grow_boxes
 from trap_core.robust.gaps import fill_gaps
 
 # Regions larger than this times the box are background, whatever their motion, unless they
@@ -72,26 +73,24 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
     Track
     """
     reference = fill_gaps(track, max_gap)  # motions are measured between the boxes as built, not as grown
-    slot = np.full(len(graphs), -1)
+    slot = np.full(len(graphs), -1, dtype=np.int64)
     slot[reference.frames] = np.arange(len(reference))
-    core = reference.boxes.astype(float)
+    frames = track.frames.astype(np.int64)
+    last = len(graphs) - 1
+    from_here = np.linalg.inv(transforms[frames])
+    cameras = np.stack([transforms[np.clip(frames + shift, 0, last)] @ from_here for shift in (-lag, lag)], axis=1)
     searched = track.boxes.astype(float)  # each round searches around what the rounds before took in
     boxes = searched.copy()  # and the box grows as far, but for the edge lines outside it (``pixel``)
-    for i, frame in enumerate(track.frames.tolist()):
-        here, from_here = graphs[frame], np.linalg.inv(transforms[frame])
-        sides = [(graphs[other], core[slot[other]], transforms[other] @ from_here)
-                 for other in (frame - lag, frame + lag) if 0 <= other < len(graphs) and slot[other] >= 0]
-        for round_ in range(rounds if len(sides) == 2 else 1):
-            found = [moving_regions(here.bbox, here.centroid, here.area, here.label, there.centroid, there.area,
-                                    there.label, core[slot[frame]], there_box, searched[i], camera, reach,
-                                    tolerance, MAX_AREA) for there, there_box, camera in sides]
-            moving = np.logical_or.reduce(found) if round_ == 0 else np.logical_and.reduce(found)
-            moving &= ~here.backdrop
-            if not np.any(moving):
-                break
-            grown = here.nodes_box(moving, around=searched[i])
-            if np.array_equal(grown, searched[i]):
-                break
-            searched[i] = grown
-            boxes[i] = here.nodes_box(moving, pixel, around=boxes[i]) if pixel > 0 else grown
+    line = (EDGE_LINE * pixel, EDGE_LINE * max(pixel, 1.0)) if pixel > 0 else (0.0, 0.0)
+    _grow_boxes(*_stacked(graphs), frames, slot, reference.boxes.astype(float), searched, boxes, cameras, lag, reach,
+                tolerance, MAX_AREA, rounds, *line)
     return dataclasses.replace(track, boxes=boxes)
+
+
+def _stacked(graphs: Sequence[PlaneGraph]) -> tuple[np.ndarray, ...]:
+    """The regions of every frame, one frame's after the other's, as the compiled kernel reads
+    them: where each frame's start, then their boxes, barycentres, areas, labels, backdrop,
+    thickness and neighbour nearest in colour (numbered within the frame)."""
+    offsets = np.r_[0, np.cumsum([g.n_nodes for g in graphs])].astype(np.int64)
+    return (offsets, *(np.concatenate([getattr(g, name) for g in graphs])
+                       for name in ("bbox", "centroid", "area", "label", "backdrop", "thickness", "nearest_in_colour")))

@@ -61,7 +61,7 @@ def drop_still_regions(track: Track, cores: dict[int, tuple[np.ndarray, np.ndarr
         i = slot[frame]
         if i < 0:
             continue
-        others = np.setdiff1d(core, anchor)
+        others = core[(core[:, None] != anchor).all(axis=1)]  # the anchor is among the core regions
         if others.size == 0:
             continue
         still = _standing_still(graphs, transforms, track.points, slot, frame, others, lag)

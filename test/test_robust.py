@@ -784,7 +784,7 @@ def test_mining_in_windows_keeps_the_tracks(short_video) -> None:
 
 def test_boxes_grow_over_the_parts_that_move_with_the_track_only() -> None:
     from trap_core.clustering import Track
-    from trap_core.robust import grow_boxes
+    from trap_core.robust import StackedRegions, grow_boxes
     params = TrapParams(segmentation="colour")
     graphs, parts = [], []
     for t in range(11):
@@ -798,11 +798,12 @@ def test_boxes_grow_over_the_parts_that_move_with_the_track_only() -> None:
         parts.append((x, 40, 20, 20))
     frames = np.arange(11)
     core = Track(1, frames, np.array(parts, float), np.ones(11), 1)
-    grown = grow_boxes(core, graphs, np.tile(np.eye(3), (11, 1, 1)), lag=5)
+    regions, still_camera = StackedRegions.of(graphs), np.tile(np.eye(3), (11, 1, 1))
+    grown = grow_boxes(core, regions, still_camera, lag=5)
     expected = np.column_stack([60 + 3 * frames, np.full(11, 40), np.full(11, 45), np.full(11, 20)])
     np.testing.assert_allclose(grown.boxes, expected)  # both parts, not the static block; at the ends one side will do
     still = Track(1, frames, np.tile([[60.0, 40.0, 20.0, 20.0]], (11, 1)), np.ones(11), 1)
-    np.testing.assert_allclose(grow_boxes(still, graphs, np.tile(np.eye(3), (11, 1, 1)), lag=5).boxes[5],
+    np.testing.assert_allclose(grow_boxes(still, regions, still_camera, lag=5).boxes[5],
                                [60, 40, 20, 20])  # a track that does not move with the parts takes none
 
 
@@ -810,7 +811,7 @@ def test_a_box_on_a_small_part_grows_over_the_body_around_it() -> None:
     """The track's patterns hold a small part inside the object's body; the body is many times
     the part's box, but it encloses the box and moves with it."""
     from trap_core.clustering import Track
-    from trap_core.robust import grow_boxes
+    from trap_core.robust import StackedRegions, grow_boxes
     params = TrapParams(segmentation="colour")
     graphs = []
     for t in range(11):
@@ -821,7 +822,8 @@ def test_a_box_on_a_small_part_grows_over_the_body_around_it() -> None:
         graphs.append(frame_graph(rgb, params))
     frames = np.arange(11)
     part = np.column_stack([65 + 3 * frames, np.full(11, 46), np.full(11, 10), np.full(11, 8)]).astype(float)
-    grown = grow_boxes(Track(1, frames, part, np.ones(11), 1), graphs, np.tile(np.eye(3), (11, 1, 1)), lag=5)
+    grown = grow_boxes(Track(1, frames, part, np.ones(11), 1), StackedRegions.of(graphs), np.tile(np.eye(3), (11, 1, 1)),
+                       lag=5)
     np.testing.assert_allclose(grown.boxes, np.column_stack([40 + 3 * frames, np.full(11, 30), np.full(11, 60),
                                                              np.full(11, 40)]))
 
@@ -831,7 +833,7 @@ def test_a_box_never_grows_over_the_backdrop() -> None:
     camera pans its barycentre stays in the middle of the view, far from where the camera's
     motion puts it, and near enough where the track's puts it: it is still the scene."""
     from trap_core.clustering import Track
-    from trap_core.robust import grow_boxes
+    from trap_core.robust import StackedRegions, grow_boxes
     params = TrapParams(segmentation="colour")
     graphs = []
     for t in range(11):
@@ -843,7 +845,7 @@ def test_a_box_never_grows_over_the_backdrop() -> None:
     part = np.column_stack([60 + frames, np.full(11, 46), np.full(11, 10), np.full(11, 8)]).astype(float)
     panning = np.tile(np.eye(3), (11, 1, 1))
     panning[:, 0, 2] = -6.0 * frames  # the scene moves 6 px a frame to the left
-    grown = grow_boxes(Track(1, frames, part, np.ones(11), 1), graphs, panning, lag=5)
+    grown = grow_boxes(Track(1, frames, part, np.ones(11), 1), StackedRegions.of(graphs), panning, lag=5)
     np.testing.assert_allclose(grown.boxes, part)
 
 
@@ -851,7 +853,7 @@ def test_a_box_grows_again_over_parts_beyond_the_first_search_found_on_both_side
     """Three parts in a row, the track's patterns on the first: the third is beyond the first
     search around it, and is taken by a second round where the track has boxes on both sides."""
     from trap_core.clustering import Track
-    from trap_core.robust import grow_boxes
+    from trap_core.robust import StackedRegions, grow_boxes
     params = TrapParams(segmentation="colour")
     graphs = []
     for t in range(21):
@@ -865,10 +867,10 @@ def test_a_box_grows_again_over_parts_beyond_the_first_search_found_on_both_side
     frames = np.arange(21)
     held = Track(1, frames, np.column_stack([20 + 3 * frames, np.full(21, 40), np.full(21, 20),
                                              np.full(21, 20)]).astype(float), np.ones(21), 1)
-    still = np.tile(np.eye(3), (21, 1, 1))
-    once = grow_boxes(held, graphs, still, lag=5, rounds=1)
+    regions, still = StackedRegions.of(graphs), np.tile(np.eye(3), (21, 1, 1))
+    once = grow_boxes(held, regions, still, lag=5, rounds=1)
     np.testing.assert_allclose(once.boxes[:, 2], 40)  # the held part and the one next to it
-    grown = grow_boxes(held, graphs, still, lag=5)
+    grown = grow_boxes(held, regions, still, lag=5)
     both_sides = (frames >= 5) & (frames <= 15)
     np.testing.assert_allclose(grown.boxes[both_sides, 2], 70)  # all three, not the static block
     np.testing.assert_allclose(grown.boxes[~both_sides, 2], 40)  # one side only: one round
@@ -877,7 +879,7 @@ def test_a_box_grows_again_over_parts_beyond_the_first_search_found_on_both_side
 def test_a_sparse_track_grows_against_its_box_interpolated_through_short_gaps() -> None:
     """Patterns seen every third frame only: no frame has a box of its own lag frames away."""
     from trap_core.clustering import Track
-    from trap_core.robust import grow_boxes
+    from trap_core.robust import StackedRegions, grow_boxes
     params = TrapParams(segmentation="colour")
     graphs = []
     for t in range(13):
@@ -890,12 +892,12 @@ def test_a_sparse_track_grows_against_its_box_interpolated_through_short_gaps() 
     seen = np.arange(0, 13, 3)
     parts = np.column_stack([60 + 3 * seen, np.full(5, 40), np.full(5, 20), np.full(5, 20)]).astype(float)
     core = Track(1, seen, parts, np.ones(5), 1)
-    still = np.tile(np.eye(3), (13, 1, 1))
-    np.testing.assert_allclose(grow_boxes(core, graphs, still, lag=5).boxes, core.boxes)
-    grown = grow_boxes(core, graphs, still, lag=5, max_gap=2)
+    regions, still = StackedRegions.of(graphs), np.tile(np.eye(3), (13, 1, 1))
+    np.testing.assert_allclose(grow_boxes(core, regions, still, lag=5).boxes, core.boxes)
+    grown = grow_boxes(core, regions, still, lag=5, max_gap=2)
     np.testing.assert_array_equal(grown.frames, seen)  # the gaps stay gaps
     np.testing.assert_allclose(grown.boxes[:, 2], 45)
-    np.testing.assert_allclose(grow_boxes(core, graphs, still, lag=5, max_gap=1).boxes, core.boxes)
+    np.testing.assert_allclose(grow_boxes(core, regions, still, lag=5, max_gap=1).boxes, core.boxes)
 
 
 def test_a_still_region_the_object_crosses_leaves_its_box_and_its_parts_stay() -> None:

@@ -22,7 +22,7 @@ from trap_core.robust import (GroupBoxes, colour_overlap, colour_shares, continu
                               drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_stray_pieces,
                               drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes, join_handovers,
                               join_returns, keep_one_size, lookalike_tracks, mend_shared_stretches, merge_duplicates,
-                              separate_groups, swap_at_crossings, through_groups)
+                              StackedRegions, separate_groups, swap_at_crossings, through_groups)
 
 
 @dataclass
@@ -52,6 +52,11 @@ class ClusterTracks:
         robust_lines = self.params.method == "robust" and self.params.edge_lines
         return self.params.working_pixel(*self.graphs[0].frame_size) if robust_lines else 0.0
 
+    @cached_property
+    def _regions(self) -> StackedRegions:
+        """Every frame's regions, stacked once for every cluster's grown boxes."""
+        return StackedRegions.of(self.graphs)
+
     def _build(self, cluster: int) -> Track:
         params = self.params
         robust = params.method == "robust"
@@ -63,7 +68,7 @@ class ClusterTracks:
         if robust and params.still_regions and share > 0:
             built = drop_still_regions(built, cores, self.graphs, self.transforms, lag, pixel)
         if robust and params.grow:
-            built = grow_boxes(built, self.graphs, self.transforms, lag=lag, max_gap=2 * lag, pixel=pixel)
+            built = grow_boxes(built, self._regions, self.transforms, lag=lag, max_gap=2 * lag, pixel=pixel)
         if robust and params.fill_gaps:
             built = fill_gaps(built, params.tau)
         return built

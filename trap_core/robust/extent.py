@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -37,7 +38,38 @@ from trap_core.robust.gaps import fill_gaps
 MAX_AREA = 4.0
 
 
-def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarray, lag: int = 5,
+@dataclass(frozen=True)
+class StackedRegions:
+    """The regions of every frame of a video, one frame's after the other's, as the compiled
+    kernel of :func:`grow_boxes` reads them. Stacked once per video: every track's boxes grow
+    over the same frames, and a video of look-alikes has hundreds of spare clusters' tracks."""
+
+    offsets: np.ndarray    # (n_frames + 1,): frame t's regions are rows offsets[t]:offsets[t + 1]
+    bbox: np.ndarray       # then, per region, its PlaneGraph attribute of that name
+    centroid: np.ndarray
+    area: np.ndarray
+    label: np.ndarray
+    backdrop: np.ndarray
+    thickness: np.ndarray
+    nearest_in_colour: np.ndarray  # numbered within the region's frame
+
+    @classmethod
+    def of(cls, graphs: Sequence[PlaneGraph]) -> StackedRegions:
+        """The regions of ``graphs`` (plane graph of every frame)."""
+        offsets = np.r_[0, np.cumsum([g.n_nodes for g in graphs])].astype(np.int64)
+        return cls(offsets, *(np.concatenate([getattr(g, field.name) for g in graphs])
+                              for field in dataclasses.fields(cls)[1:]))
+
+    def __len__(self) -> int:
+        """Frames."""
+        return self.offsets.size - 1
+
+    def arrays(self) -> tuple[np.ndarray, ...]:
+        """The fields in order, as the kernel takes them (not copied, as ``astuple`` would)."""
+        return tuple(getattr(self, field.name) for field in dataclasses.fields(self))
+
+
+def grow_boxes(track: Track, regions: StackedRegions, transforms: np.ndarray, lag: int = 5,
                reach: float = 0.5, tolerance: float = 0.3, max_gap: int = 0, rounds: int = 3,
                pixel: float = 0.0) -> Track:
     """The track with each box grown over the nearby regions that move with it.
@@ -45,8 +77,8 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
     Parameters
     ----------
     track : Track
-    graphs : sequence of PlaneGraph
-        Plane graph of every frame of the video.
+    regions : StackedRegions
+        The regions of every frame of the video.
     transforms : (n_frames, 3, 3) array
         Camera motion: ``transforms[t]`` maps frame-0 coordinates to frame ``t``
         (:func:`trap_core.robust.camera_transforms`).
@@ -73,24 +105,16 @@ def grow_boxes(track: Track, graphs: Sequence[PlaneGraph], transforms: np.ndarra
     Track
     """
     reference = fill_gaps(track, max_gap)  # motions are measured between the boxes as built, not as grown
-    slot = np.full(len(graphs), -1, dtype=np.int64)
+    slot = np.full(len(regions), -1, dtype=np.int64)
     slot[reference.frames] = np.arange(len(reference))
     frames = track.frames.astype(np.int64)
-    last = len(graphs) - 1
+    last = len(regions) - 1
     from_here = np.linalg.inv(transforms[frames])
     cameras = np.stack([transforms[np.clip(frames + shift, 0, last)] @ from_here for shift in (-lag, lag)], axis=1)
     searched = track.boxes.astype(float)  # each round searches around what the rounds before took in
     boxes = searched.copy()  # and the box grows as far, but for the edge lines outside it (``pixel``)
     line = (EDGE_LINE * pixel, EDGE_LINE * max(pixel, 1.0)) if pixel > 0 else (0.0, 0.0)
-    _grow_boxes(*_stacked(graphs), frames, slot, reference.boxes.astype(float), searched, boxes, cameras, lag, reach,
-                tolerance, MAX_AREA, rounds, *line)
+    _grow_boxes(*regions.arrays(), frames, slot, reference.boxes.astype(float), searched, boxes, cameras, lag,
+                reach, tolerance, MAX_AREA, rounds, *line)
     return dataclasses.replace(track, boxes=boxes)
 
-
-def _stacked(graphs: Sequence[PlaneGraph]) -> tuple[np.ndarray, ...]:
-    """The regions of every frame, one frame's after the other's, as the compiled kernel reads
-    them: where each frame's start, then their boxes, barycentres, areas, labels, backdrop,
-    thickness and neighbour nearest in colour (numbered within the frame)."""
-    offsets = np.r_[0, np.cumsum([g.n_nodes for g in graphs])].astype(np.int64)
-    return (offsets, *(np.concatenate([getattr(g, name) for g in graphs])
-                       for name in ("bbox", "centroid", "area", "label", "backdrop", "thickness", "nearest_in_colour")))

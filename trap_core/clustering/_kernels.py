@@ -1,10 +1,12 @@
-"""Compiled kernel of the pattern distance (numba): all pairs, only over shared frames."""
+"""Compiled kernels (numba) of the pattern distance (all pairs, only over shared frames) and of a
+track's core regions in one frame (its place among the occurrences, the regions most held)."""
 from __future__ import annotations
 
 import numba as nb
 import numpy as np
 
 from trap_core.mining._kernels import _root  # union-find root with path halving, shared with occurrence linking
+from trap_core.rag._kernels import nodes_box
 
 
 @nb.njit(cache=True, nogil=True, parallel=False)
@@ -61,3 +63,102 @@ def sharing_components(nodes: np.ndarray, ends: np.ndarray, n_nodes: int) -> np.
         is_root[roots[item]] = 1
     number = np.cumsum(is_root) - 1
     return number[roots]
+
+
+@nb.njit(cache=True, nogil=True)
+def most_held(nodes: np.ndarray, share: float, weights: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes held by at least ``share`` times the weight of the most held node (and at least 1),
+    and the most held ones; ``nodes`` are the sets' nodes one set after the other (each set's
+    distinct), ``weights`` what each entry counts (its set's lifetime, or 1)."""
+    seen = np.zeros(nodes.max() + 1)
+    for i in range(nodes.size):
+        seen[nodes[i]] += weights[i]
+    top = seen.max()
+    return np.flatnonzero(seen >= max(share * top, 1.0)), np.flatnonzero(seen == top)
+
+
+@nb.njit(cache=True, nogil=True)
+def place_kept(nodes: np.ndarray, ends: np.ndarray, lifetimes: np.ndarray, share: float, n_nodes: int,
+               bbox: np.ndarray) -> np.ndarray:
+    """Mask of the node sets (``nodes[ends[i - 1]:ends[i]]``) in the track's place
+    (:func:`trap_core.clustering.one_place`): sets sharing a node are one place, places whose
+    core boxes (``bbox`` of the nodes in ``share`` of their sets) are closer than half the
+    smaller box's larger side one thing; the place of the most ``lifetimes`` is kept."""
+    place = sharing_components(nodes, ends, n_nodes + 1)
+    n_places = place.max() + 1
+    if n_places == 1:
+        return np.ones(ends.size, dtype=np.bool_)
+    boxes = np.empty((n_places, 4))
+    no_box, no_thickness, no_nearest = np.zeros(0), np.zeros(0, dtype=np.float32), np.zeros(0, dtype=np.int32)
+    for p in range(n_places):
+        held = np.empty(nodes.size, dtype=nodes.dtype)
+        count = 0
+        start = 0
+        for item in range(ends.size):
+            if place[item] == p:
+                held[count:count + ends[item] - start] = nodes[start:ends[item]]
+                count += ends[item] - start
+            start = ends[item]
+        core = most_held(held[:count], share, np.ones(count))[0]
+        boxes[p] = nodes_box(bbox, no_thickness, no_nearest, core, no_box, 0.0, 0.0)
+    parent = np.arange(n_places)
+    for a in range(n_places):
+        for b in range(a + 1, n_places):
+            gap = max(boxes[a, 0] - boxes[b, 0] - boxes[b, 2], boxes[b, 0] - boxes[a, 0] - boxes[a, 2],
+                      boxes[a, 1] - boxes[b, 1] - boxes[b, 3], boxes[b, 1] - boxes[a, 1] - boxes[a, 3])
+            if gap < min(max(boxes[a, 2], boxes[a, 3]), max(boxes[b, 2], boxes[b, 3])) / 2:
+                to = _root(parent, b)
+                parent[_root(parent, a)] = to
+    roots = np.empty(n_places, dtype=np.int64)
+    for p in range(n_places):
+        roots[p] = _root(parent, p)
+    thing = np.searchsorted(np.unique(roots), roots)[place]  # numbered in the order of their roots
+    if thing.max() == 0:
+        return np.ones(ends.size, dtype=np.bool_)
+    total = np.zeros(thing.max() + 1)
+    for item in range(ends.size):
+        total[thing[item]] += lifetimes[item]
+    return thing == np.argmax(total)
+
+
+@nb.njit(cache=True, nogil=True)
+def core_regions(nodes: np.ndarray, ends: np.ndarray, lifetimes: np.ndarray, backdrop: np.ndarray,
+                 bbox: np.ndarray, share: float) -> tuple[np.ndarray, np.ndarray]:
+    """The core regions and the most held ones of one frame's occurrences (node sets
+    ``nodes[ends[i - 1]:ends[i]]`` with their patterns' ``lifetimes``), as
+    :func:`trap_core.clustering.core_regions` defines them: the ``backdrop`` left out of every
+    set (unless all would go), the sets of the track's place (:func:`place_kept`), each entry
+    counting its set's lifetime."""
+    kept_nodes = np.empty(nodes.size, dtype=np.bool_)
+    for i in range(nodes.size):
+        kept_nodes[i] = not backdrop[nodes[i]]
+    if not kept_nodes.all() and kept_nodes.any():  # sets left empty go
+        new_ends = np.empty(ends.size, dtype=ends.dtype)
+        new_lifetimes = np.empty(ends.size)
+        n_sets = 0
+        count = 0
+        start = 0
+        for item in range(ends.size):
+            before = count
+            for i in range(start, ends[item]):
+                if kept_nodes[i]:
+                    count += 1
+            if count > before:
+                new_ends[n_sets] = count
+                new_lifetimes[n_sets] = lifetimes[item]
+                n_sets += 1
+            start = ends[item]
+        nodes, ends, lifetimes = nodes[kept_nodes], new_ends[:n_sets], new_lifetimes[:n_sets]
+    in_place = place_kept(nodes, ends, lifetimes, share, backdrop.size, bbox)
+    held = np.empty(nodes.size, dtype=nodes.dtype)
+    weights = np.empty(nodes.size)
+    count = 0
+    start = 0
+    for item in range(ends.size):
+        if in_place[item]:
+            for i in range(start, ends[item]):
+                held[count] = nodes[i]
+                weights[count] = lifetimes[item]
+                count += 1
+        start = ends[item]
+    return most_held(held[:count], share, weights[:count])

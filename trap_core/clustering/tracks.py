@@ -7,7 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from trap_core.clustering._kernels import sharing_components
+from trap_core.clustering._kernels import core_regions as _core_regions
+from trap_core.clustering._kernels import place_kept
 from trap_core.mining import MiningResult
 from trap_core.rag import PlaneGraph
 
@@ -217,25 +218,7 @@ def core_regions(graph: PlaneGraph, face_sets: np.ndarray, share: float,
     over a plain scene every face of an object holds it, and the box would be the whole view.
     """
     nodes, ends = graph.sets_nodes(face_sets)
-    nodes, ends, lifetimes = _sets_without_backdrop(graph, nodes, ends, lifetimes)
-    kept = _place_kept(graph, nodes, ends, lifetimes, share)
-    sizes = np.diff(ends, prepend=0)
-    weights = np.repeat(lifetimes.astype(float), sizes)
-    if kept is not None:
-        in_place = np.repeat(kept, sizes)
-        nodes, weights = nodes[in_place], weights[in_place]
-    return _most_held(nodes, share, weights)
-
-
-def _sets_without_backdrop(graph: PlaneGraph, nodes: np.ndarray, ends: np.ndarray,
-                           lifetimes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The node sets (``nodes[ends[i - 1]:ends[i]]``, with their ``lifetimes``) without the
-    backdrop's node; a set left empty goes, and all stay as they are where every set would."""
-    kept = ~graph.backdrop[nodes]
-    if kept.all() or not kept.any():
-        return nodes, ends, lifetimes
-    left = np.bincount(np.repeat(np.arange(ends.size), np.diff(ends, prepend=0))[kept], minlength=ends.size)
-    return nodes[kept], np.cumsum(left[left > 0]), lifetimes[left > 0]
+    return _core_regions(nodes, ends, np.asarray(lifetimes, dtype=np.float64), graph.backdrop, graph.bbox, share)
 
 
 def one_place(graph: PlaneGraph, node_sets: list[np.ndarray], lifetimes: np.ndarray,
@@ -250,50 +233,8 @@ def one_place(graph: PlaneGraph, node_sets: list[np.ndarray], lifetimes: np.ndar
     the track's, since a track's own long patterns outweigh a few short ones elsewhere, however
     many those are in the frame.
     """
-    kept = _place_kept(graph, np.concatenate(node_sets), np.cumsum([n.size for n in node_sets]), lifetimes, share)
-    return node_sets if kept is None else [nodes for nodes, keep in zip(node_sets, kept) if keep]
+    kept = place_kept(np.concatenate(node_sets).astype(np.int64), np.cumsum([n.size for n in node_sets]),
+                      np.asarray(lifetimes, dtype=np.float64), share, graph.n_nodes, graph.bbox)
+    return [nodes for nodes, keep in zip(node_sets, kept) if keep]
 
 
-def _place_kept(graph: PlaneGraph, nodes: np.ndarray, ends: np.ndarray, lifetimes: np.ndarray,
-                share: float) -> np.ndarray | None:
-    """Mask of the node sets (``nodes[ends[i - 1]:ends[i]]``) in the track's place, None where
-    all are (:func:`one_place`)."""
-    place = sharing_components(nodes, ends, graph.n_nodes + 1)
-    if place.max() == 0:
-        return None
-    sizes = np.diff(ends, prepend=0)
-    boxes = np.array([graph.nodes_box(_most_held(nodes[np.repeat(place == p, sizes)], share)[0])
-                      for p in range(place.max() + 1)])
-    near = [(a, b) for a in range(len(boxes)) for b in range(a + 1, len(boxes))
-            if _gap(boxes[a], boxes[b]) < min(boxes[a, 2:].max(), boxes[b, 2:].max()) / 2]
-    place = _components(len(boxes), near)[place]
-    if place.max() == 0:
-        return None
-    return place == int(np.argmax(np.bincount(place, weights=lifetimes)))
-
-
-def _most_held(nodes: np.ndarray, share: float, weights: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes held by at least ``share`` times as many node sets as the most held node, and the
-    most held ones; ``nodes`` are the sets' nodes one set after the other (each set's distinct).
-    With ``weights`` (per entry of ``nodes``, at least 1), a set counts its weight, not one."""
-    seen = np.bincount(nodes, weights=weights)
-    return np.flatnonzero(seen >= max(share * seen.max(), 1)), np.flatnonzero(seen == seen.max())
-
-
-def _gap(a: np.ndarray, b: np.ndarray) -> float:
-    """Distance between boxes (x, y, w, h) along the axis that separates them most (< 0: overlap)."""
-    return float(max(a[0] - b[0] - b[2], b[0] - a[0] - a[2], a[1] - b[1] - b[3], b[1] - a[1] - a[3]))
-
-
-def _components(n: int, pairs: list[tuple[int, int]]) -> np.ndarray:
-    """Component (numbered 0..) of each of ``n`` items linked by ``pairs`` (union-find)."""
-    parent = list(range(n))
-
-    def root(item: int) -> int:
-        while parent[item] != item:
-            parent[item] = parent[parent[item]]
-            item = parent[item]
-        return item
-    for a, b in pairs:
-        parent[root(a)] = root(b)
-    return np.unique([root(item) for item in range(n)], return_inverse=True)[1].reshape(-1)

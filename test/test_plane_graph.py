@@ -378,7 +378,6 @@ def test_occurrences_nodes_in_one_pass_are_the_faces_nodes_one_by_one() -> None:
     assert np.array_equal(graph.faces_nodes(frozenset(face_sets[0][face_sets[0] >= 0].tolist())), nodes[:ends[0]])
 
 
-
 def test_thickness_tells_a_line_from_a_body() -> None:
     """Twice the area over the perimeter: about 1 for a line of single pixels, half the side of
     a square."""

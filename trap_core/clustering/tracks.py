@@ -236,5 +236,3 @@ def one_place(graph: PlaneGraph, node_sets: list[np.ndarray], lifetimes: np.ndar
     kept = place_kept(np.concatenate(node_sets).astype(np.int64), np.cumsum([n.size for n in node_sets]),
                       np.asarray(lifetimes, dtype=np.float64), share, graph.n_nodes, graph.bbox)
     return [nodes for nodes, keep in zip(node_sets, kept) if keep]
-
-

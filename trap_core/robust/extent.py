@@ -117,4 +117,3 @@ def grow_boxes(track: Track, regions: StackedRegions, transforms: np.ndarray, la
     _grow_boxes(*regions.arrays(), frames, slot, reference.boxes.astype(float), searched, boxes, cameras, lag,
                 reach, tolerance, MAX_AREA, rounds, *line)
     return dataclasses.replace(track, boxes=boxes)
-

@@ -363,4 +363,3 @@ def _occurrences_reach_border(result: MiningResult, rows: np.ndarray, width: flo
     box = result.occ_box[rows].astype(float)
     corner = box[:, :2] if shift is None else box[:, :2] + shift
     return reaches_border(np.column_stack([corner, box[:, 2:] - box[:, :2] + 1]), width, height, margin)
-

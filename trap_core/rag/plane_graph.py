@@ -20,6 +20,14 @@ BACKDROP_SHARE = 0.5  # a region over this share of the frame is the backdrop: o
 EDGE_LINE = 1.5
 
 
+def edge_line_limits(pixel: float) -> tuple[float, float]:
+    """For frames segmented at ``pixel`` frame pixels per pixel (0: edge lines count like any
+    region): the thickness under which a region is an edge line, and how far (frame px) such
+    lines may push a box's side out and still be left out of it, a side moving by whole frame
+    pixels (:meth:`PlaneGraph.nodes_box`); both 0 where they count."""
+    return (EDGE_LINE * pixel, EDGE_LINE * max(pixel, 1.0)) if pixel > 0 else (0.0, 0.0)
+
+
 def _box_or_none(around: np.ndarray | None) -> np.ndarray:
     """``around`` (x, y, w, h) as the compiled kernels take it: no values for no box."""
     return np.zeros(0) if around is None else np.asarray(around, dtype=np.float64)
@@ -87,10 +95,8 @@ class PlaneGraph:
         """
         nodes = np.asarray(nodes)
         nodes = np.flatnonzero(nodes) if nodes.dtype == bool else nodes.astype(np.int64, copy=False)
-        if pixel > 0:  # a box's side moves by whole frame pixels
-            return _nodes_box(self.bbox, self.thickness, self.nearest_in_colour, nodes, _box_or_none(around),
-                              EDGE_LINE * pixel, EDGE_LINE * max(pixel, 1.0))
-        return _nodes_box(self.bbox, self.thickness, self.nearest_in_colour, nodes, _box_or_none(around), 0.0, 0.0)
+        return _nodes_box(self.bbox, self.thickness, self.nearest_in_colour, nodes, _box_or_none(around),
+                          *edge_line_limits(pixel))
 
     def outer_lines(self, nodes: np.ndarray, pixel: float, around: np.ndarray | None = None) -> np.ndarray:
         """(len(nodes),) which of the regions ``nodes`` (indices) are edge lines (under
@@ -100,7 +106,7 @@ class PlaneGraph:
         Smoothing blends each side of a sharp edge with the other: the line on the object's side
         keeps most of the object's colour, the one outside most of the ground's."""
         return _outer_lines(self.bbox, self.thickness, self.nearest_in_colour, np.asarray(nodes, dtype=np.int64),
-                            EDGE_LINE * pixel, _box_or_none(around))
+                            edge_line_limits(pixel)[0], _box_or_none(around))
 
     @cached_property
     def nearest_in_colour(self) -> np.ndarray:

@@ -27,7 +27,7 @@ import numpy as np
 
 from trap_core.clustering import Track
 from trap_core.rag import PlaneGraph
-from trap_core.rag.plane_graph import EDGE_LINE
+from trap_core.rag.plane_graph import edge_line_limits
 from trap_core.robust._kernels import grow_boxes as _grow_boxes
 from trap_core.robust.gaps import fill_gaps
 
@@ -113,7 +113,6 @@ def grow_boxes(track: Track, regions: StackedRegions, transforms: np.ndarray, la
     cameras = np.stack([transforms[np.clip(frames + shift, 0, last)] @ from_here for shift in (-lag, lag)], axis=1)
     searched = track.boxes.astype(float)  # each round searches around what the rounds before took in
     boxes = searched.copy()  # and the box grows as far, but for the edge lines outside it (``pixel``)
-    line = (EDGE_LINE * pixel, EDGE_LINE * max(pixel, 1.0)) if pixel > 0 else (0.0, 0.0)
     _grow_boxes(*regions.arrays(), frames, slot, reference.boxes.astype(float), searched, boxes, cameras, lag,
-                reach, tolerance, MAX_AREA, rounds, *line)
+                reach, tolerance, MAX_AREA, rounds, *edge_line_limits(pixel))
     return dataclasses.replace(track, boxes=boxes)

@@ -784,7 +784,8 @@ def test_mining_in_windows_keeps_the_tracks(short_video) -> None:
 
 def test_boxes_grow_over_the_parts_that_move_with_the_track_only() -> None:
     from trap_core.clustering import Track
-    from trap_core.robust import StackedRegions, grow_boxes
+    from trap_core.rag import StackedGraphs
+    from trap_core.robust import grow_boxes
     params = TrapParams(segmentation="colour")
     graphs, parts = [], []
     for t in range(11):
@@ -798,7 +799,7 @@ def test_boxes_grow_over_the_parts_that_move_with_the_track_only() -> None:
         parts.append((x, 40, 20, 20))
     frames = np.arange(11)
     core = Track(1, frames, np.array(parts, float), np.ones(11), 1)
-    regions, still_camera = StackedRegions.of(graphs), np.tile(np.eye(3), (11, 1, 1))
+    regions, still_camera = StackedGraphs.of(graphs), np.tile(np.eye(3), (11, 1, 1))
     grown = grow_boxes(core, regions, still_camera, lag=5)
     expected = np.column_stack([60 + 3 * frames, np.full(11, 40), np.full(11, 45), np.full(11, 20)])
     np.testing.assert_allclose(grown.boxes, expected)  # both parts, not the static block; at the ends one side will do
@@ -811,7 +812,8 @@ def test_a_box_on_a_small_part_grows_over_the_body_around_it() -> None:
     """The track's patterns hold a small part inside the object's body; the body is many times
     the part's box, but it encloses the box and moves with it."""
     from trap_core.clustering import Track
-    from trap_core.robust import StackedRegions, grow_boxes
+    from trap_core.rag import StackedGraphs
+    from trap_core.robust import grow_boxes
     params = TrapParams(segmentation="colour")
     graphs = []
     for t in range(11):
@@ -822,7 +824,7 @@ def test_a_box_on_a_small_part_grows_over_the_body_around_it() -> None:
         graphs.append(frame_graph(rgb, params))
     frames = np.arange(11)
     part = np.column_stack([65 + 3 * frames, np.full(11, 46), np.full(11, 10), np.full(11, 8)]).astype(float)
-    grown = grow_boxes(Track(1, frames, part, np.ones(11), 1), StackedRegions.of(graphs), np.tile(np.eye(3), (11, 1, 1)),
+    grown = grow_boxes(Track(1, frames, part, np.ones(11), 1), StackedGraphs.of(graphs), np.tile(np.eye(3), (11, 1, 1)),
                        lag=5)
     np.testing.assert_allclose(grown.boxes, np.column_stack([40 + 3 * frames, np.full(11, 30), np.full(11, 60),
                                                              np.full(11, 40)]))
@@ -833,7 +835,8 @@ def test_a_box_never_grows_over_the_backdrop() -> None:
     camera pans its barycentre stays in the middle of the view, far from where the camera's
     motion puts it, and near enough where the track's puts it: it is still the scene."""
     from trap_core.clustering import Track
-    from trap_core.robust import StackedRegions, grow_boxes
+    from trap_core.rag import StackedGraphs
+    from trap_core.robust import grow_boxes
     params = TrapParams(segmentation="colour")
     graphs = []
     for t in range(11):
@@ -845,7 +848,7 @@ def test_a_box_never_grows_over_the_backdrop() -> None:
     part = np.column_stack([60 + frames, np.full(11, 46), np.full(11, 10), np.full(11, 8)]).astype(float)
     panning = np.tile(np.eye(3), (11, 1, 1))
     panning[:, 0, 2] = -6.0 * frames  # the scene moves 6 px a frame to the left
-    grown = grow_boxes(Track(1, frames, part, np.ones(11), 1), StackedRegions.of(graphs), panning, lag=5)
+    grown = grow_boxes(Track(1, frames, part, np.ones(11), 1), StackedGraphs.of(graphs), panning, lag=5)
     np.testing.assert_allclose(grown.boxes, part)
 
 
@@ -853,7 +856,8 @@ def test_a_box_grows_again_over_parts_beyond_the_first_search_found_on_both_side
     """Three parts in a row, the track's patterns on the first: the third is beyond the first
     search around it, and is taken by a second round where the track has boxes on both sides."""
     from trap_core.clustering import Track
-    from trap_core.robust import StackedRegions, grow_boxes
+    from trap_core.rag import StackedGraphs
+    from trap_core.robust import grow_boxes
     params = TrapParams(segmentation="colour")
     graphs = []
     for t in range(21):
@@ -867,7 +871,7 @@ def test_a_box_grows_again_over_parts_beyond_the_first_search_found_on_both_side
     frames = np.arange(21)
     held = Track(1, frames, np.column_stack([20 + 3 * frames, np.full(21, 40), np.full(21, 20),
                                              np.full(21, 20)]).astype(float), np.ones(21), 1)
-    regions, still = StackedRegions.of(graphs), np.tile(np.eye(3), (21, 1, 1))
+    regions, still = StackedGraphs.of(graphs), np.tile(np.eye(3), (21, 1, 1))
     once = grow_boxes(held, regions, still, lag=5, rounds=1)
     np.testing.assert_allclose(once.boxes[:, 2], 40)  # the held part and the one next to it
     grown = grow_boxes(held, regions, still, lag=5)
@@ -879,7 +883,8 @@ def test_a_box_grows_again_over_parts_beyond_the_first_search_found_on_both_side
 def test_a_sparse_track_grows_against_its_box_interpolated_through_short_gaps() -> None:
     """Patterns seen every third frame only: no frame has a box of its own lag frames away."""
     from trap_core.clustering import Track
-    from trap_core.robust import StackedRegions, grow_boxes
+    from trap_core.rag import StackedGraphs
+    from trap_core.robust import grow_boxes
     params = TrapParams(segmentation="colour")
     graphs = []
     for t in range(13):
@@ -892,7 +897,7 @@ def test_a_sparse_track_grows_against_its_box_interpolated_through_short_gaps() 
     seen = np.arange(0, 13, 3)
     parts = np.column_stack([60 + 3 * seen, np.full(5, 40), np.full(5, 20), np.full(5, 20)]).astype(float)
     core = Track(1, seen, parts, np.ones(5), 1)
-    regions, still = StackedRegions.of(graphs), np.tile(np.eye(3), (13, 1, 1))
+    regions, still = StackedGraphs.of(graphs), np.tile(np.eye(3), (13, 1, 1))
     np.testing.assert_allclose(grow_boxes(core, regions, still, lag=5).boxes, core.boxes)
     grown = grow_boxes(core, regions, still, lag=5, max_gap=2)
     np.testing.assert_array_equal(grown.frames, seen)  # the gaps stay gaps
@@ -905,6 +910,7 @@ def test_a_still_region_the_object_crosses_leaves_its_box_and_its_parts_stay() -
     core box becomes the block."""
     from trap_core.clustering import build_track, frame_cores
     from trap_core.mining import MiningParams, mine
+    from trap_core.rag import StackedGraphs
     from trap_core.robust import drop_still_regions
     params = TrapParams(segmentation="colour")
     graphs, truth = [], []
@@ -923,9 +929,10 @@ def test_a_still_region_the_object_crosses_leaves_its_box_and_its_parts_stay() -
         rows = result.st(pattern)
         x0 = np.array([truth[f][0] for f in result.occ_frame[rows]])
         labels[pattern] = 0 if np.all(np.abs(result.occ_position[rows, 0] - x0 - 17) < 18) else -1
-    built = build_track(result, labels, 0, 1, graphs, core_share=0.8)
+    stacked = StackedGraphs.of(graphs)
+    built = build_track(result, labels, 0, 1, stacked, core_share=0.8)
     assert np.any(built.boxes[:, 2] >= 60)  # without the rule the block is in the box while crossed
-    cores = frame_cores(result, np.flatnonzero(labels == 0), graphs, 0.8)
+    cores = frame_cores(result, np.flatnonzero(labels == 0), stacked, 0.8)
     trimmed = drop_still_regions(built, cores, graphs, np.tile(np.eye(3), (30, 1, 1)), lag=2)
     np.testing.assert_allclose(trimmed.boxes, [truth[f] for f in trimmed.frames])
 

@@ -1,12 +1,12 @@
 """Compiled kernels (numba) of the pattern distance (all pairs, only over shared frames) and of a
-track's core regions in one frame (its place among the occurrences, the regions most held)."""
+track's core regions in each frame (its place among the occurrences, the regions most held)."""
 from __future__ import annotations
 
 import numba as nb
 import numpy as np
 
 from trap_core.mining._kernels import _root  # union-find root with path halving, shared with occurrence linking
-from trap_core.rag._kernels import nodes_box
+from trap_core.rag._kernels import _grow, nodes_box, sets_nodes
 
 
 @nb.njit(cache=True, nogil=True, parallel=False)
@@ -162,3 +162,42 @@ def core_regions(nodes: np.ndarray, ends: np.ndarray, lifetimes: np.ndarray, bac
                 count += 1
         start = ends[item]
     return most_held(held[:count], share, weights[:count])
+
+
+@nb.njit(cache=True, nogil=True)
+def stacked_core_regions(face_sets: np.ndarray, lifetimes: np.ndarray, frames: np.ndarray, ends: np.ndarray,
+                         node_offsets: np.ndarray, face_base: np.ndarray, face_offsets: np.ndarray,
+                         face_half_edges: np.ndarray, he_origin: np.ndarray, backdrop: np.ndarray, bbox: np.ndarray,
+                         share: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`core_regions` in each of ``frames``, whose occurrences are rows ``ends[k - 1]:ends[k]``
+    of ``face_sets`` (face ids within the frame, -1 padded) and ``lifetimes``, the video's graphs
+    stacked (:class:`trap_core.rag.StackedGraphs`). Returns the core regions of every frame one
+    frame's after the other's, where each frame's end, and the same of the most held ones."""
+    cores = np.empty(8 * max(frames.size, 1), dtype=np.int64)
+    core_ends = np.empty(frames.size, dtype=np.int64)
+    tops = np.empty(frames.size, dtype=np.int64)
+    top_ends = np.empty(frames.size, dtype=np.int64)
+    n_cores = n_tops = 0
+    start = 0
+    for k in range(frames.size):
+        frame = frames[k]
+        rows = face_sets[start:ends[k]].copy()
+        for i in range(rows.shape[0]):
+            for j in range(rows.shape[1]):
+                if rows[i, j] >= 0:
+                    rows[i, j] += face_base[frame]
+        lo, hi = node_offsets[frame], node_offsets[frame + 1]
+        nodes, node_ends = sets_nodes(rows, he_origin, face_half_edges, face_offsets, hi - lo + 1)
+        core, top = core_regions(nodes, node_ends, lifetimes[start:ends[k]], backdrop[lo:hi], bbox[lo:hi], share)
+        if n_cores + core.size > cores.size:
+            cores = _grow(cores, 2 * (n_cores + core.size))
+        if n_tops + top.size > tops.size:
+            tops = _grow(tops, 2 * (n_tops + top.size))
+        cores[n_cores:n_cores + core.size] = core
+        tops[n_tops:n_tops + top.size] = top
+        n_cores += core.size
+        n_tops += top.size
+        core_ends[k] = n_cores
+        top_ends[k] = n_tops
+        start = ends[k]
+    return cores[:n_cores], core_ends, tops[:n_tops], top_ends

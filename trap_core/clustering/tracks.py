@@ -2,15 +2,16 @@
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
 
 from trap_core.clustering._kernels import core_regions as _core_regions
 from trap_core.clustering._kernels import place_kept
+from trap_core.clustering._kernels import stacked_core_regions as _stacked_core_regions
 from trap_core.mining import MiningResult
-from trap_core.rag import PlaneGraph
+from trap_core.rag import PlaneGraph, StackedGraphs
 
 
 @dataclass(frozen=True)
@@ -137,11 +138,11 @@ def _intersection(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray,
 
 
 def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, track_id: int,
-                graphs: Sequence[PlaneGraph] | None = None, core_share: float = 0.0, pixel: float = 0.0,
-                cores: dict[int, tuple[np.ndarray, np.ndarray]] | None = None) -> Track:
+                graphs: StackedGraphs | None = None, core_share: float = 0.0, pixel: float = 0.0,
+                cores: FrameCores | None = None) -> Track:
     """Box of the cluster in each frame: around the regions of its patterns' occurrences there.
 
-    With ``graphs`` and ``core_share > 0`` (ours), only the regions found in at least that
+    With ``graphs`` (every frame's, stacked) and ``core_share > 0`` (ours), only the regions found in at least that
     share of the frame's occurrences in the track's place count (as many as the most shared
     region, :func:`core_regions`): a pattern that mixes the object with a background region it
     passes over then does not stretch the box to that whole background region. With ``pixel``
@@ -168,8 +169,7 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     around = np.column_stack([x0, y0, x1 - x0 + 1, y1 - y0 + 1])
     if graphs is not None and core_share > 0:
         cores = frame_cores(result, patterns, graphs, core_share) if cores is None else cores
-        for slot, frame in enumerate(known.tolist()):
-            around[slot] = graphs[frame].nodes_box(cores[frame][0], pixel)
+        around = graphs.nodes_boxes(cores.frames, cores.core, cores.core_ends, pixel)
     seen = np.unique(np.column_stack([inverse, owner]), axis=0)[:, 0]
     per_frame = np.bincount(seen, minlength=known.size).astype(float)
     score = per_frame / per_frame.max() if per_frame.size else per_frame
@@ -192,13 +192,40 @@ def frame_face_sets(result: MiningResult, patterns: np.ndarray) -> Iterator[tupl
         yield frame, result.occ_faces[rows[order[start:stop]]], lifetimes[order[start:stop]]
 
 
-def frame_cores(result: MiningResult, patterns: np.ndarray, graphs: Sequence[PlaneGraph],
-                share: float) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+@dataclass(frozen=True)
+class FrameCores:
+    """Per frame where a cluster's patterns occur (``frames``, increasing), its :func:`core_regions`:
+    frame ``frames[k]``'s are ``core[core_ends[k - 1]:core_ends[k]]`` (numbered within the frame),
+    and the most held of them ``top[top_ends[k - 1]:top_ends[k]]``."""
+
+    frames: np.ndarray
+    core: np.ndarray
+    core_ends: np.ndarray
+    top: np.ndarray
+    top_ends: np.ndarray
+
+    def __iter__(self) -> Iterator[tuple[int, np.ndarray, np.ndarray]]:
+        """Each frame, its core regions and the most held ones."""
+        core_starts, top_starts = np.r_[0, self.core_ends[:-1]], np.r_[0, self.top_ends[:-1]]
+        for k, frame in enumerate(self.frames.tolist()):
+            yield (frame, self.core[core_starts[k]:self.core_ends[k]], self.top[top_starts[k]:self.top_ends[k]])
+
+
+def frame_cores(result: MiningResult, patterns: np.ndarray, graphs: StackedGraphs, share: float) -> FrameCores:
     """Per frame where any of ``patterns`` occurs: the :func:`core_regions` of their occurrences
-    there. Read once per cluster: its track's boxes and the still-region rule
+    there, all frames in one compiled pass (``graphs``: every frame's, stacked). Read once per
+    cluster: its track's boxes and the still-region rule
     (:func:`trap_core.robust.drop_still_regions`) both start from them."""
-    return {frame: core_regions(graphs[frame], face_sets, share, lifetimes)
-            for frame, face_sets, lifetimes in frame_face_sets(result, patterns)}
+    rows, owner = result.rows_of(patterns)
+    frames = result.occ_frame[rows]
+    order = np.argsort(frames, kind="stable")
+    known, counts = np.unique(frames[order], return_counts=True)
+    lifetimes = result.st_occurrences[patterns][owner][order].astype(np.float64)
+    face_sets = result.occ_faces[rows[order]].astype(np.int64).reshape(order.size, -1)
+    return FrameCores(known, *_stacked_core_regions(face_sets, lifetimes, known.astype(np.int64), np.cumsum(counts),
+                                                    graphs.node_offsets, graphs.face_base, graphs.face_offsets,
+                                                    graphs.face_half_edges, graphs.he_origin, graphs.backdrop,
+                                                    graphs.bbox, share))
 
 
 def core_regions(graph: PlaneGraph, face_sets: np.ndarray, share: float,

@@ -17,12 +17,12 @@ import numpy as np
 from trap_core.clustering import ClusterSummary, Track, build_track, frame_cores, twin_clusters
 from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
-from trap_core.rag import PlaneGraph
+from trap_core.rag import PlaneGraph, StackedGraphs
 from trap_core.robust import (GroupBoxes, colour_overlap, colour_shares, continue_to_border, continue_tracks,
                               drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_stray_pieces,
                               drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes, join_handovers,
                               join_returns, keep_one_size, lookalike_tracks, mend_shared_stretches, merge_duplicates,
-                              StackedRegions, separate_groups, swap_at_crossings, through_groups)
+                              separate_groups, swap_at_crossings, through_groups)
 
 
 @dataclass
@@ -53,9 +53,9 @@ class ClusterTracks:
         return self.params.working_pixel(*self.graphs[0].frame_size) if robust_lines else 0.0
 
     @cached_property
-    def _regions(self) -> StackedRegions:
-        """Every frame's regions, stacked once for every cluster's grown boxes."""
-        return StackedRegions.of(self.graphs)
+    def _stacked(self) -> StackedGraphs:
+        """Every frame's plane graph, stacked once for every cluster's core regions and boxes."""
+        return StackedGraphs.of(self.graphs)
 
     def _build(self, cluster: int) -> Track:
         params = self.params
@@ -63,12 +63,13 @@ class ClusterTracks:
         lag = max(1, params.tau // 5)  # frames either side where a region is looked for again
         pixel = self._edge_pixel
         share = params.core_share if robust else 0.0
-        cores = frame_cores(self.mined, np.flatnonzero(self.labels == cluster), self.graphs, share) if share else None
-        built = build_track(self.mined, self.labels, cluster, 0, self.graphs, share, pixel, cores)
+        stacked = self._stacked if share else None
+        cores = frame_cores(self.mined, np.flatnonzero(self.labels == cluster), stacked, share) if share else None
+        built = build_track(self.mined, self.labels, cluster, 0, stacked, share, pixel, cores)
         if robust and params.still_regions and share > 0:
             built = drop_still_regions(built, cores, self.graphs, self.transforms, lag, pixel)
         if robust and params.grow:
-            built = grow_boxes(built, self._regions, self.transforms, lag=lag, max_gap=2 * lag, pixel=pixel)
+            built = grow_boxes(built, self._stacked, self.transforms, lag=lag, max_gap=2 * lag, pixel=pixel)
         if robust and params.fill_gaps:
             built = fill_gaps(built, params.tau)
         return built

@@ -419,3 +419,21 @@ def nodes_box(bbox: np.ndarray, thickness: np.ndarray, nearest: np.ndarray, node
                 if whole[side + 2] - inner[side + 2] <= reach:
                     whole[side + 2] = inner[side + 2]
     return np.array([whole[0], whole[1], whole[2] - whole[0], whole[3] - whole[1]])
+
+
+@nb.njit(cache=True, nogil=True)
+def stacked_nodes_boxes(node_offsets: np.ndarray, bbox: np.ndarray, thickness: np.ndarray, nearest: np.ndarray,
+                        frames: np.ndarray, nodes: np.ndarray, ends: np.ndarray, thin_below: float,
+                        reach: float) -> np.ndarray:
+    """(K, 4) :func:`nodes_box` of each of ``frames`` around its ``nodes[ends[k - 1]:ends[k]]``
+    (numbered within the frame), the frames' regions stacked (rows ``node_offsets[t]:
+    node_offsets[t + 1]``: :class:`trap_core.rag.StackedGraphs`)."""
+    out = np.empty((frames.size, 4))
+    no_box = np.zeros(0)
+    start = 0
+    for k in range(frames.size):
+        lo, hi = node_offsets[frames[k]], node_offsets[frames[k] + 1]
+        out[k] = nodes_box(bbox[lo:hi], thickness[lo:hi], nearest[lo:hi], nodes[start:ends[k]], no_box, thin_below,
+                           reach)
+        start = ends[k]
+    return out

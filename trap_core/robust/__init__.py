@@ -13,7 +13,7 @@ from trap_core.robust.continuation import continue_tracks, join_handovers, mend_
 from trap_core.robust.crossings import lookalike_tracks, swap_at_crossings
 from trap_core.robust.ends import alone_at_ends
 from trap_core.robust.duplicates import drop_repeated_pieces, drop_shared_stretches, extend_from_twins, merge_duplicates
-from trap_core.robust.extent import StackedRegions, grow_boxes
+from trap_core.robust.extent import grow_boxes
 from trap_core.robust.gaps import fill_gaps
 from trap_core.robust.groups import separate_groups
 from trap_core.robust.hops import moves_in_hops, steady_patterns
@@ -27,8 +27,7 @@ from trap_core.robust.still import drop_still_regions
 from trap_core.robust.strays import drop_stray_pieces, drop_strays
 from trap_core.robust.through_groups import GroupBoxes, through_groups
 
-__all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderContacts", "GroupBoxes", "StackedRegions",
-           "alone_at_ends",
+__all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderContacts", "GroupBoxes", "alone_at_ends",
            "border_contacts", "border_share", "camera_paths", "camera_transforms", "cluster_world_speed",
            "colour_overlap", "colour_shares", "continue_to_border", "continue_tracks", "drop_repeated_pieces",
            "drop_shared_stretches", "drop_still_regions", "drop_stray_pieces", "drop_strays", "end_at_exits",

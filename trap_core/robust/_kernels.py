@@ -15,13 +15,14 @@ AREA_RATIO = 1.25
 @nb.njit(cache=True, nogil=True)
 def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
                    other_centroid: np.ndarray, other_area: np.ndarray, other_label: np.ndarray,
-                   box: np.ndarray, other_box: np.ndarray, around: np.ndarray, camera: np.ndarray, reach: float,
-                   tolerance: float, max_area: float) -> np.ndarray:
+                   other_by_look: np.ndarray, box: np.ndarray, other_box: np.ndarray, around: np.ndarray,
+                   camera: np.ndarray, reach: float, tolerance: float, max_area: float) -> np.ndarray:
     """Mask of the regions near ``around`` (a box) that the track's displacement to the other
     frame (``box`` to ``other_box``) puts on a look-alike region (same label, area within
     ``AREA_RATIO``, within ``tolerance`` sqrt(area) + 1 px) at least twice as close as the camera's
     motion ``camera`` (3x3) does. Regions over ``max_area`` times ``around`` are left out unless
-    their box encloses it."""
+    their box encloses it. ``other_by_look``: the other frame's rows ordered by label, then area,
+    so that only a region's look-alikes are read, not every region of the frame."""
     shift_x = other_box[0] + other_box[2] / 2 - (box[0] + box[2] / 2)
     shift_y = other_box[1] + other_box[3] / 2 - (box[1] + box[3] / 2)
     x, y, w, h = around[0], around[1], around[2], around[3]
@@ -40,10 +41,11 @@ def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
         ky = (camera[1, 0] * cx + camera[1, 1] * cy + camera[1, 2]) / scale
         with_track = np.inf
         with_camera = np.inf
-        for j in range(other_centroid.shape[0]):
-            if (other_label[j] != label[i] or other_area[j] >= AREA_RATIO * area[i]
-                    or AREA_RATIO * other_area[j] <= area[i]):
-                continue
+        for k in range(_first_lookalike(other_label, other_area, other_by_look, label[i], area[i]),
+                       other_by_look.size):
+            j = other_by_look[k]
+            if other_label[j] != label[i] or other_area[j] >= AREA_RATIO * area[i]:
+                break
             with_track = min(with_track, np.hypot(other_centroid[j, 0] - mx, other_centroid[j, 1] - my))
             with_camera = min(with_camera, np.hypot(other_centroid[j, 0] - kx, other_centroid[j, 1] - ky))
         found[i] = with_track <= tolerance * np.sqrt(area[i]) + 1 and with_track < with_camera / 2
@@ -51,16 +53,32 @@ def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
 
 
 @nb.njit(cache=True, nogil=True)
+def _first_lookalike(label: np.ndarray, area: np.ndarray, by_look: np.ndarray, want_label: int,
+                     want_area: float) -> int:
+    """First position in ``by_look`` (rows ordered by label, then area) of a region of label
+    ``want_label`` with an area over ``want_area / AREA_RATIO`` (binary search)."""
+    lo, hi = 0, by_look.size
+    while lo < hi:
+        middle = (lo + hi) // 2
+        row = by_look[middle]
+        if label[row] < want_label or (label[row] == want_label and AREA_RATIO * area[row] <= want_area):
+            lo = middle + 1
+        else:
+            hi = middle
+    return lo
+
+
+@nb.njit(cache=True, nogil=True)
 def grow_boxes(offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
-               backdrop: np.ndarray, thickness: np.ndarray, nearest: np.ndarray, frames: np.ndarray,
+               backdrop: np.ndarray, thickness: np.ndarray, nearest: np.ndarray, by_look: np.ndarray, frames: np.ndarray,
                slot: np.ndarray, core: np.ndarray, searched: np.ndarray, boxes: np.ndarray, cameras: np.ndarray,
                lag: int, reach: float, tolerance: float, max_area: float, rounds: int, thin_below: float,
                line_reach: float) -> None:
     """Grow ``searched`` and ``boxes`` (T, 4) of a track's ``frames`` in place over the regions
     that move with it (:func:`trap_core.robust.grow_boxes`). The video's regions are stacked:
-    frame ``t``'s are rows ``offsets[t]:offsets[t + 1]`` of ``bbox`` ... ``nearest`` (the last
-    numbered within its frame). ``slot``: row of ``core`` (the boxes motions are read between)
-    of each video frame, -1 where none; ``cameras`` (T, 2, 3, 3): the camera's motion from each
+    frame ``t``'s are rows ``offsets[t]:offsets[t + 1]`` of ``bbox`` ... ``by_look`` (the last two
+    numbered within the frame). ``slot``: row of ``core`` (the boxes motions are read between) of
+    each video frame, -1 where none; ``cameras`` (T, 2, 3, 3): the camera's motion from each
     frame to ``lag`` frames before and after. ``thin_below`` > 0: edge lines left out of
     ``boxes`` within ``line_reach`` (:func:`trap_core.rag._kernels.nodes_box`)."""
     n_frames = offsets.size - 1
@@ -82,8 +100,9 @@ def grow_boxes(offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area
             for k in range(n_sides):
                 olo, ohi = offsets[others[k]], offsets[others[k] + 1]
                 found = moving_regions(bbox[lo:hi], centroid[lo:hi], area[lo:hi], label[lo:hi], centroid[olo:ohi],
-                                       area[olo:ohi], label[olo:ohi], core[slot[frame]], core[slot[others[k]]],
-                                       searched[i], cameras[i, sides[k]], reach, tolerance, max_area)
+                                       area[olo:ohi], label[olo:ohi], by_look[olo:ohi], core[slot[frame]],
+                                       core[slot[others[k]]], searched[i], cameras[i, sides[k]], reach, tolerance,
+                                       max_area)
                 moving = (moving | found) if round_ == 0 else (moving & found)
             moving &= ~backdrop[lo:hi]
             held = np.flatnonzero(moving)
@@ -162,6 +181,34 @@ def mean_pair_distances(first: np.ndarray, second: np.ndarray, covered: np.ndarr
                 count += 1
         if count:
             out[i] = total / count
+    return out
+
+
+@nb.njit(cache=True, nogil=True)
+def group_distances(first: np.ndarray, second: np.ndarray, frames: np.ndarray, covered: np.ndarray,
+                    start: np.ndarray, offsets: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Per frame of ``frames``: the distance between the mean positions of the clusters in the
+    masks ``first`` and ``second`` that cover it (``covered``: (C, n_frames); each frame covered
+    by both; paths as in :func:`mean_pair_distances`), each mean summed in cluster order."""
+    sums = np.zeros((2, frames.size, 2))
+    counts = np.zeros((2, frames.size))
+    for side in range(2):
+        members = first if side == 0 else second
+        for cluster in range(members.size):
+            if not members[cluster]:
+                continue
+            for k in range(frames.size):
+                frame = frames[k]
+                if covered[cluster, frame]:
+                    row = offsets[cluster] + frame - start[cluster]
+                    sums[side, k, 0] += points[row, 0]
+                    sums[side, k, 1] += points[row, 1]
+                    counts[side, k] += 1
+    out = np.empty(frames.size)
+    for k in range(frames.size):
+        dx = sums[0, k, 0] / counts[0, k] - sums[1, k, 0] / counts[1, k]
+        dy = sums[0, k, 1] / counts[0, k] - sums[1, k, 1] / counts[1, k]
+        out[k] = np.sqrt(dx * dx + dy * dy)
     return out
 
 

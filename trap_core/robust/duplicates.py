@@ -96,8 +96,12 @@ def _back_through_border(kept: Track, twin: Track, view: tuple[float, float]) ->
     own_border = reaches_border(kept.boxes, *view)
     twin_border = reaches_border(twin.boxes, *view)
     slot = np.searchsorted(kept.frames, twin.frames)  # the kept frames before a twin frame: slot - 1
-    for gap in np.unique(slot).tolist():
-        rows = np.flatnonzero(slot == gap)
+    starts = np.r_[0, np.flatnonzero(np.diff(slot)) + 1]  # each gap's twin rows are a run (frames increase)
+    stops = np.r_[starts[1:], slot.size]
+    gaps = slot[starts]
+    by_border = np.r_[False, own_border][gaps] | np.r_[own_border, False][gaps]  # after or before such a box
+    for start, stop, gap in zip(starts[by_border].tolist(), stops[by_border].tolist(), gaps[by_border].tolist()):
+        rows = np.arange(start, stop)
         at_border = rows[twin_border[rows]]
         if gap > 0 and own_border[gap - 1]:
             out_from = at_border[0] if at_border.size else rows[-1] + 1

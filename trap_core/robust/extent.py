@@ -20,13 +20,11 @@ else a sparse track's boxes never grow and stay on the one part its patterns hol
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
-from dataclasses import dataclass
 
 import numpy as np
 
 from trap_core.clustering import Track
-from trap_core.rag import PlaneGraph
+from trap_core.rag import StackedGraphs
 from trap_core.rag.plane_graph import edge_line_limits
 from trap_core.robust._kernels import grow_boxes as _grow_boxes
 from trap_core.robust.gaps import fill_gaps
@@ -38,38 +36,7 @@ from trap_core.robust.gaps import fill_gaps
 MAX_AREA = 4.0
 
 
-@dataclass(frozen=True)
-class StackedRegions:
-    """The regions of every frame of a video, one frame's after the other's, as the compiled
-    kernel of :func:`grow_boxes` reads them. Stacked once per video: every track's boxes grow
-    over the same frames, and a video of look-alikes has hundreds of spare clusters' tracks."""
-
-    offsets: np.ndarray    # (n_frames + 1,): frame t's regions are rows offsets[t]:offsets[t + 1]
-    bbox: np.ndarray       # then, per region, its PlaneGraph attribute of that name
-    centroid: np.ndarray
-    area: np.ndarray
-    label: np.ndarray
-    backdrop: np.ndarray
-    thickness: np.ndarray
-    nearest_in_colour: np.ndarray  # numbered within the region's frame
-
-    @classmethod
-    def of(cls, graphs: Sequence[PlaneGraph]) -> StackedRegions:
-        """The regions of ``graphs`` (plane graph of every frame)."""
-        offsets = np.r_[0, np.cumsum([g.n_nodes for g in graphs])].astype(np.int64)
-        return cls(offsets, *(np.concatenate([getattr(g, field.name) for g in graphs])
-                              for field in dataclasses.fields(cls)[1:]))
-
-    def __len__(self) -> int:
-        """Frames."""
-        return self.offsets.size - 1
-
-    def arrays(self) -> tuple[np.ndarray, ...]:
-        """The fields in order, as the kernel takes them (not copied, as ``astuple`` would)."""
-        return tuple(getattr(self, field.name) for field in dataclasses.fields(self))
-
-
-def grow_boxes(track: Track, regions: StackedRegions, transforms: np.ndarray, lag: int = 5,
+def grow_boxes(track: Track, regions: StackedGraphs, transforms: np.ndarray, lag: int = 5,
                reach: float = 0.5, tolerance: float = 0.3, max_gap: int = 0, rounds: int = 3,
                pixel: float = 0.0) -> Track:
     """The track with each box grown over the nearby regions that move with it.
@@ -77,8 +44,8 @@ def grow_boxes(track: Track, regions: StackedRegions, transforms: np.ndarray, la
     Parameters
     ----------
     track : Track
-    regions : StackedRegions
-        The regions of every frame of the video.
+    regions : StackedGraphs
+        The plane graphs of every frame of the video, stacked.
     transforms : (n_frames, 3, 3) array
         Camera motion: ``transforms[t]`` maps frame-0 coordinates to frame ``t``
         (:func:`trap_core.robust.camera_transforms`).
@@ -113,6 +80,8 @@ def grow_boxes(track: Track, regions: StackedRegions, transforms: np.ndarray, la
     cameras = np.stack([transforms[np.clip(frames + shift, 0, last)] @ from_here for shift in (-lag, lag)], axis=1)
     searched = track.boxes.astype(float)  # each round searches around what the rounds before took in
     boxes = searched.copy()  # and the box grows as far, but for the edge lines outside it (``pixel``)
-    _grow_boxes(*regions.arrays(), frames, slot, reference.boxes.astype(float), searched, boxes, cameras, lag,
-                reach, tolerance, MAX_AREA, rounds, *edge_line_limits(pixel))
+    _grow_boxes(regions.node_offsets, regions.bbox, regions.centroid, regions.area, regions.label, regions.backdrop,
+                regions.thickness, regions.nearest_in_colour, regions.by_look, frames, slot,
+                reference.boxes.astype(float), searched, boxes, cameras, lag, reach, tolerance, MAX_AREA, rounds,
+                *edge_line_limits(pixel))
     return dataclasses.replace(track, boxes=boxes)

@@ -35,7 +35,7 @@ from scipy import sparse
 
 from trap_core.clustering import ClusterSummary, Trajectories, reaches_border, summarise
 from trap_core.mining import MiningResult
-from trap_core.robust._kernels import mean_pair_distances
+from trap_core.robust._kernels import group_distances, mean_pair_distances
 from trap_core.robust.camera import map_points
 
 
@@ -182,19 +182,9 @@ def _on_another_object(summary: ClusterSummary, group: np.ndarray, group_covered
 def _apart(summary: ClusterSummary, first: np.ndarray, second: np.ndarray, frames: np.ndarray) -> float:
     """Mean distance, over ``frames``, between the mean positions of the clusters in the masks
     ``first`` and ``second`` that cover each frame (every frame is covered by both)."""
-    return float(np.mean(np.linalg.norm(_mean_position(summary, first, frames)
-                                        - _mean_position(summary, second, frames), axis=1)))
-
-
-def _mean_position(summary: ClusterSummary, members: np.ndarray, frames: np.ndarray) -> np.ndarray:
-    """(len(frames), 2) mean position of the clusters ``members`` (a mask) covering each frame."""
-    total = np.zeros((frames.size, 2))
-    count = np.zeros(frames.size)
-    for cluster in np.flatnonzero(members):
-        seen = summary.covered[cluster, frames]
-        total[seen] += summary.paths.at(cluster, frames[seen])
-        count[seen] += 1
-    return total / count[:, None]
+    paths = summary.paths
+    return float(np.mean(group_distances(first, second, frames, summary.covered, paths.start, paths.offsets,
+                                         paths.points)))
 
 
 def _prediction_errors(paths: Trajectories, earlier: np.ndarray, later: np.ndarray,

@@ -22,22 +22,22 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track
+from trap_core.clustering import FrameCores, Track
 from trap_core.rag import PlaneGraph
 from trap_core.robust.camera import map_points
 
 AREA_FACTOR = 2.0  # a background region the object passes over loses or regains what it hides
 
 
-def drop_still_regions(track: Track, cores: dict[int, tuple[np.ndarray, np.ndarray]],
-                       graphs: Sequence[PlaneGraph], transforms: np.ndarray, lag: int, pixel: float = 0.0) -> Track:
+def drop_still_regions(track: Track, cores: FrameCores, graphs: Sequence[PlaneGraph], transforms: np.ndarray,
+                       lag: int, pixel: float = 0.0) -> Track:
     """The track with each core box rebuilt without the core regions that stand still.
 
     Parameters
     ----------
     track : Track
         As built from its cluster (:func:`trap_core.clustering.build_track`), with its points.
-    cores : dict
+    cores : FrameCores
         Per frame, the core regions of the track's cluster and the most shared ones
         (:func:`trap_core.clustering.frame_cores`, at the track's ``core_share``).
     graphs : sequence of PlaneGraph
@@ -57,7 +57,7 @@ def drop_still_regions(track: Track, cores: dict[int, tuple[np.ndarray, np.ndarr
     slot = np.full(len(graphs), -1)
     slot[track.frames] = np.arange(len(track))
     boxes = track.boxes.astype(float)
-    for frame, (core, anchor) in cores.items():
+    for frame, core, anchor in cores:
         i = slot[frame]
         if i < 0:
             continue

@@ -16,13 +16,15 @@ AREA_RATIO = 1.25
 def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
                    other_centroid: np.ndarray, other_area: np.ndarray, other_label: np.ndarray,
                    other_by_look: np.ndarray, box: np.ndarray, other_box: np.ndarray, around: np.ndarray,
-                   camera: np.ndarray, reach: float, tolerance: float, max_area: float) -> np.ndarray:
+                   camera: np.ndarray, reach: float, tolerance: float, max_area: float, known: np.ndarray) -> np.ndarray:
     """Mask of the regions near ``around`` (a box) that the track's displacement to the other
     frame (``box`` to ``other_box``) puts on a look-alike region (same label, area within
     ``AREA_RATIO``, within ``tolerance`` sqrt(area) + 1 px) at least twice as close as the camera's
     motion ``camera`` (3x3) does. Regions over ``max_area`` times ``around`` are left out unless
     their box encloses it. ``other_by_look``: the other frame's rows ordered by label, then area,
-    so that only a region's look-alikes are read, not every region of the frame."""
+    so that only a region's look-alikes are read, not every region of the frame. ``known``: per
+    region, whether it was found so before for the same frames, motions and camera (-1: not
+    looked for yet), filled in here: a box that grows again searches mostly the same regions."""
     shift_x = other_box[0] + other_box[2] / 2 - (box[0] + box[2] / 2)
     shift_y = other_box[1] + other_box[3] / 2 - (box[1] + box[3] / 2)
     x, y, w, h = around[0], around[1], around[2], around[3]
@@ -33,6 +35,9 @@ def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
             continue
         encloses = bbox[i, 0] <= x and bbox[i, 1] <= y and bbox[i, 2] >= x + w - 1 and bbox[i, 3] >= y + h - 1
         if area[i] > max_area * w * h and not encloses:
+            continue
+        if known[i] >= 0:
+            found[i] = known[i] == 1
             continue
         cx, cy = centroid[i, 0], centroid[i, 1]
         mx, my = cx + shift_x, cy + shift_y
@@ -49,6 +54,7 @@ def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
             with_track = min(with_track, np.hypot(other_centroid[j, 0] - mx, other_centroid[j, 1] - my))
             with_camera = min(with_camera, np.hypot(other_centroid[j, 0] - kx, other_centroid[j, 1] - ky))
         found[i] = with_track <= tolerance * np.sqrt(area[i]) + 1 and with_track < with_camera / 2
+        known[i] = 1 if found[i] else 0
     return found
 
 
@@ -95,6 +101,7 @@ def grow_boxes(offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area
                 n_sides += 1
         if n_sides == 0:
             continue
+        known = np.full((2, hi - lo), -1, dtype=np.int8)  # each region's verdict per side, for every round
         for round_ in range(rounds if n_sides == 2 else 1):
             moving = np.zeros(hi - lo, dtype=np.bool_) if round_ == 0 else np.ones(hi - lo, dtype=np.bool_)
             for k in range(n_sides):
@@ -102,7 +109,7 @@ def grow_boxes(offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area
                 found = moving_regions(bbox[lo:hi], centroid[lo:hi], area[lo:hi], label[lo:hi], centroid[olo:ohi],
                                        area[olo:ohi], label[olo:ohi], by_look[olo:ohi], core[slot[frame]],
                                        core[slot[others[k]]], searched[i], cameras[i, sides[k]], reach, tolerance,
-                                       max_area)
+                                       max_area, known[k])
                 moving = (moving | found) if round_ == 0 else (moving & found)
             moving &= ~backdrop[lo:hi]
             held = np.flatnonzero(moving)

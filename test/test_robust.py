@@ -933,7 +933,7 @@ def test_a_still_region_the_object_crosses_leaves_its_box_and_its_parts_stay() -
     built = build_track(result, labels, 0, 1, stacked, core_share=0.8)
     assert np.any(built.boxes[:, 2] >= 60)  # without the rule the block is in the box while crossed
     cores = frame_cores(result, np.flatnonzero(labels == 0), stacked, 0.8)
-    trimmed = drop_still_regions(built, cores, graphs, np.tile(np.eye(3), (30, 1, 1)), lag=2)
+    trimmed = drop_still_regions(built, cores, stacked, np.tile(np.eye(3), (30, 1, 1)), lag=2)
     np.testing.assert_allclose(trimmed.boxes, [truth[f] for f in trimmed.frames])
 
 

@@ -67,7 +67,7 @@ class ClusterTracks:
         cores = frame_cores(self.mined, np.flatnonzero(self.labels == cluster), stacked, share) if share else None
         built = build_track(self.mined, self.labels, cluster, 0, stacked, share, pixel, cores)
         if robust and params.still_regions and share > 0:
-            built = drop_still_regions(built, cores, self.graphs, self.transforms, lag, pixel)
+            built = drop_still_regions(built, cores, stacked, self.transforms, lag, pixel)
         if robust and params.grow:
             built = grow_boxes(built, self._stacked, self.transforms, lag=lag, max_gap=2 * lag, pixel=pixel)
         if robust and params.fill_gaps:

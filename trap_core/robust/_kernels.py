@@ -124,6 +124,84 @@ def grow_boxes(offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area
 
 
 @nb.njit(cache=True, nogil=True)
+def found_again(centroid: np.ndarray, area: np.ndarray, label: np.ndarray, other_centroid: np.ndarray,
+                other_area: np.ndarray, other_label: np.ndarray, regions: np.ndarray, shift: np.ndarray,
+                camera: np.ndarray, area_factor: float) -> tuple[np.ndarray, np.ndarray]:
+    """Per region of ``regions``: the distance from where ``shift`` (a track's motion to the other
+    frame) puts it, and from where the camera's motion ``camera`` (3x3) puts it, to the nearest
+    region of the other frame of its label and an area within ``area_factor`` of its own; inf
+    for both where there is none (:func:`trap_core.robust.still.found_again`)."""
+    with_track = np.full(regions.size, np.inf)
+    with_camera = np.full(regions.size, np.inf)
+    for k in range(regions.size):
+        i = regions[k]
+        cx, cy = np.float64(centroid[i, 0]), np.float64(centroid[i, 1])
+        mx, my = cx + shift[0], cy + shift[1]
+        scale = camera[2, 0] * cx + camera[2, 1] * cy + camera[2, 2]
+        kx = (camera[0, 0] * cx + camera[0, 1] * cy + camera[0, 2]) / scale
+        ky = (camera[1, 0] * cx + camera[1, 1] * cy + camera[1, 2]) / scale
+        for j in range(other_area.size):
+            if (other_label[j] != label[i] or not other_area[j] < area_factor * area[i]
+                    or not area_factor * other_area[j] > area[i]):
+                continue
+            with_track[k] = min(with_track[k], np.hypot(other_centroid[j, 0] - mx, other_centroid[j, 1] - my))
+            with_camera[k] = min(with_camera[k], np.hypot(other_centroid[j, 0] - kx, other_centroid[j, 1] - ky))
+    return with_track, with_camera
+
+
+@nb.njit(cache=True, nogil=True)
+def still_core_boxes(node_offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray,
+                     label: np.ndarray, thickness: np.ndarray, nearest: np.ndarray, frames: np.ndarray,
+                     core: np.ndarray, core_ends: np.ndarray, top: np.ndarray, top_ends: np.ndarray,
+                     slot: np.ndarray, points: np.ndarray, cameras: np.ndarray, boxes: np.ndarray, lag: int,
+                     area_factor: float, thin_below: float, line_reach: float) -> None:
+    """Rebuild ``boxes`` (a track's, rows ``slot[frame]``) in place without the core regions
+    that stand still (:func:`trap_core.robust.drop_still_regions`): per frame ``frames[k]``, its
+    core regions ``core[core_ends[k - 1]:core_ends[k]]`` other than the most held ones (``top``,
+    alike) found again, in every frame ``lag`` away the track covers, at most half as far from
+    where the camera's motion (``cameras[k, side]``, before and after) puts them as from where
+    the track's ``points`` move. The video's regions are stacked as for :func:`grow_boxes`."""
+    n_frames = node_offsets.size - 1
+    no_box = np.zeros(0)
+    core_start = top_start = 0
+    for k in range(frames.size):
+        frame = frames[k]
+        here_core, anchor = core[core_start:core_ends[k]], top[top_start:top_ends[k]]
+        core_start, top_start = core_ends[k], top_ends[k]
+        i = slot[frame]
+        if i < 0:
+            continue
+        keep = np.ones(here_core.size, dtype=np.bool_)
+        for c in range(here_core.size):
+            for a in range(anchor.size):
+                if here_core[c] == anchor[a]:
+                    keep[c] = False
+        others = here_core[keep]
+        if others.size == 0:
+            continue
+        still = np.ones(others.size, dtype=np.bool_)
+        tested = False
+        lo, hi = node_offsets[frame], node_offsets[frame + 1]
+        for side, other in enumerate((frame - lag, frame + lag)):
+            j = slot[other] if 0 <= other < n_frames else -1
+            if j < 0:
+                continue
+            shift = points[j] - points[i]
+            if np.isnan(shift).any():
+                continue
+            tested = True
+            olo, ohi = node_offsets[other], node_offsets[other + 1]
+            with_track, with_camera = found_again(centroid[lo:hi], area[lo:hi], label[lo:hi], centroid[olo:ohi],
+                                                  area[olo:ohi], label[olo:ohi], others, shift, cameras[k, side],
+                                                  area_factor)
+            still &= 2 * with_camera < with_track
+        if not tested or not still.any():
+            continue
+        held = np.concatenate((anchor, others[~still]))
+        boxes[i] = nodes_box(bbox[lo:hi], thickness[lo:hi], nearest[lo:hi], held, no_box, thin_below, line_reach)
+
+
+@nb.njit(cache=True, nogil=True)
 def matched_regions(centroid: np.ndarray, area: np.ndarray, label: np.ndarray, next_centroid: np.ndarray,
                     next_area: np.ndarray, next_label: np.ndarray, reach: float,
                     max_ratio: float) -> tuple[np.ndarray, np.ndarray]:

@@ -23,14 +23,16 @@ from collections.abc import Sequence
 import numpy as np
 
 from trap_core.clustering import FrameCores, Track
-from trap_core.rag import PlaneGraph
-from trap_core.robust.camera import map_points
+from trap_core.rag import PlaneGraph, StackedGraphs
+from trap_core.rag.plane_graph import edge_line_limits
+from trap_core.robust._kernels import found_again as _found_again
+from trap_core.robust._kernels import still_core_boxes as _still_core_boxes
 
 AREA_FACTOR = 2.0  # a background region the object passes over loses or regains what it hides
 
 
-def drop_still_regions(track: Track, cores: FrameCores, graphs: Sequence[PlaneGraph], transforms: np.ndarray,
-                       lag: int, pixel: float = 0.0) -> Track:
+def drop_still_regions(track: Track, cores: FrameCores, graphs: StackedGraphs, transforms: np.ndarray, lag: int,
+                       pixel: float = 0.0) -> Track:
     """The track with each core box rebuilt without the core regions that stand still.
 
     Parameters
@@ -40,8 +42,8 @@ def drop_still_regions(track: Track, cores: FrameCores, graphs: Sequence[PlaneGr
     cores : FrameCores
         Per frame, the core regions of the track's cluster and the most shared ones
         (:func:`trap_core.clustering.frame_cores`, at the track's ``core_share``).
-    graphs : sequence of PlaneGraph
-        Plane graph of every frame of the video.
+    graphs : StackedGraphs
+        Plane graph of every frame of the video, stacked.
     transforms : (n_frames, 3, 3) array
         Camera motion, frame 0 to frame ``t`` (:func:`trap_core.robust.camera_transforms`).
     lag : int
@@ -54,40 +56,17 @@ def drop_still_regions(track: Track, cores: FrameCores, graphs: Sequence[PlaneGr
     -------
     Track
     """
-    slot = np.full(len(graphs), -1)
+    slot = np.full(len(graphs), -1, dtype=np.int64)
     slot[track.frames] = np.arange(len(track))
+    frames = cores.frames.astype(np.int64)
+    from_here = np.linalg.inv(transforms[frames])
+    cameras = np.stack([transforms[np.clip(frames + shift, 0, len(graphs) - 1)] @ from_here for shift in (-lag, lag)],
+                       axis=1)
     boxes = track.boxes.astype(float)
-    for frame, core, anchor in cores:
-        i = slot[frame]
-        if i < 0:
-            continue
-        others = core[(core[:, None] != anchor).all(axis=1)]  # the anchor is among the core regions
-        if others.size == 0:
-            continue
-        still = _standing_still(graphs, transforms, track.points, slot, frame, others, lag)
-        if still.any():
-            boxes[i] = graphs[frame].nodes_box(np.r_[anchor, others[~still]], pixel)
+    _still_core_boxes(graphs.node_offsets, graphs.bbox, graphs.centroid, graphs.area, graphs.label, graphs.thickness,
+                      graphs.nearest_in_colour, frames, cores.core, cores.core_ends, cores.top, cores.top_ends, slot,
+                      track.points.astype(float), cameras, boxes, lag, AREA_FACTOR, *edge_line_limits(pixel))
     return dataclasses.replace(track, boxes=boxes)
-
-
-def _standing_still(graphs: Sequence[PlaneGraph], transforms: np.ndarray, points: np.ndarray, slot: np.ndarray,
-                    frame: int, regions: np.ndarray, lag: int) -> np.ndarray:
-    """Mask of ``regions`` of ``frame`` found again at most half as far from where the camera puts
-    them as from where the track's points move, in every frame ``lag`` away (before, after) that
-    the track covers."""
-    still = np.ones(regions.size, dtype=bool)
-    tested = False
-    for other in (frame - lag, frame + lag):
-        j = slot[other] if 0 <= other < len(graphs) else -1
-        if j < 0:
-            continue
-        shift = points[j] - points[slot[frame]]
-        if np.isnan(shift).any():
-            continue
-        tested = True
-        with_track, with_camera = found_again(graphs, transforms, frame, other, regions, shift)
-        still &= 2 * with_camera < with_track
-    return still & tested
 
 
 def found_again(graphs: Sequence[PlaneGraph], transforms: np.ndarray, frame: int, other: int, regions: np.ndarray,
@@ -97,13 +76,6 @@ def found_again(graphs: Sequence[PlaneGraph], transforms: np.ndarray, frame: int
     (``transforms``) puts it, to the nearest region of ``graphs[other]`` that looks like it (same
     label, area within ``AREA_FACTOR``); inf for both where none does."""
     here, there = graphs[frame], graphs[other]
-    moved = map_points(transforms[other] @ np.linalg.inv(transforms[frame]), here.centroid[regions])
-    with_track, with_camera = np.full(regions.size, np.inf), np.full(regions.size, np.inf)
-    for k, region in enumerate(regions.tolist()):
-        look_alike = ((there.label == here.label[region]) & (there.area < AREA_FACTOR * here.area[region])
-                      & (AREA_FACTOR * there.area > here.area[region]))
-        if look_alike.any():
-            candidates = there.centroid[look_alike]
-            with_track[k] = np.hypot(*(candidates - (here.centroid[region] + shift)).T).min()
-            with_camera[k] = np.hypot(*(candidates - moved[k]).T).min()
-    return with_track, with_camera
+    return _found_again(here.centroid, here.area, here.label, there.centroid, there.area, there.label,
+                        np.asarray(regions, dtype=np.int64), np.asarray(shift, dtype=np.float64),
+                        transforms[other] @ np.linalg.inv(transforms[frame]), AREA_FACTOR)

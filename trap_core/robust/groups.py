@@ -33,6 +33,7 @@ import dataclasses
 from collections.abc import Sequence
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 
 from trap_core.clustering import Track, box_centres, box_containment, reaches_border, track_pieces
 
@@ -144,13 +145,23 @@ def _running_median(values: np.ndarray, preferred: Sequence[np.ndarray], window:
             if piece.size == 0:
                 continue
             frames = next((piece[mask[slot, piece]] for mask in preferred if mask[slot, piece].any()), piece)
-            samples = values[slot, frames]
-            medians = np.array([np.median(samples[max(i - window, 0):i + window + 1], axis=0)
-                                for i in range(frames.size)])
+            medians = _window_medians(values[slot, frames], window)
             span = np.arange(piece[0], piece[-1] + 1)
             for axis in range(values.shape[2]):
                 out[slot, span, axis] = np.interp(span, frames, medians[:, axis])
     return out
+
+
+def _window_medians(samples: np.ndarray, window: int) -> np.ndarray:
+    """(n, k) per row of ``samples`` (n, k), the median of the rows at most ``window`` away,
+    per column; the rows whose window the ends cut short one by one, the others at once."""
+    n = len(samples)
+    medians = np.empty(samples.shape)
+    if n > 2 * window:
+        medians[window:n - window] = np.median(sliding_window_view(samples, 2 * window + 1, axis=0), axis=-1)
+    for i in [*range(min(window, n)), *range(max(n - window, window), n)]:
+        medians[i] = np.median(samples[max(i - window, 0):i + window + 1], axis=0)
+    return medians
 
 
 def _follow_occluded(boxes: np.ndarray, partner: np.ndarray, width: float, height: float, border: float,

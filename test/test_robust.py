@@ -824,8 +824,8 @@ def test_a_box_on_a_small_part_grows_over_the_body_around_it() -> None:
         graphs.append(frame_graph(rgb, params))
     frames = np.arange(11)
     part = np.column_stack([65 + 3 * frames, np.full(11, 46), np.full(11, 10), np.full(11, 8)]).astype(float)
-    grown = grow_boxes(Track(1, frames, part, np.ones(11), 1), StackedGraphs.of(graphs), np.tile(np.eye(3), (11, 1, 1)),
-                       lag=5)
+    grown = grow_boxes(Track(1, frames, part, np.ones(11), 1), StackedGraphs.of(graphs),
+                       np.tile(np.eye(3), (11, 1, 1)), lag=5)
     np.testing.assert_allclose(grown.boxes, np.column_stack([40 + 3 * frames, np.full(11, 30), np.full(11, 60),
                                                              np.full(11, 40)]))
 

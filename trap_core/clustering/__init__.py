@@ -4,10 +4,10 @@ from trap_core.clustering.distance import pattern_distances
 from trap_core.clustering.errors import ClusteringError
 from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns, labels_after_merges, lifetime_cut
 from trap_core.clustering.selection import ClusterSummary, seen_frames, select_clusters, summarise, twin_clusters
-from trap_core.clustering.tracks import (FrameCores, Track, box_centres, box_containment, box_iou, box_path, build_track,
-                                        centre_inside, centre_path, centre_steps, core_regions, frame_cores,
-                                        frame_face_sets, in_rows, one_place, reaches_border, track_pieces, usual_size,
-                                        with_frames)
+from trap_core.clustering.tracks import (FrameCores, Track, box_centres, box_containment, box_iou, box_path,
+                                        build_track, centre_inside, centre_path, centre_steps, core_regions,
+                                        frame_cores, frame_face_sets, in_rows, one_place, reaches_border, track_pieces,
+                                        usual_size, with_frames)
 from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
 
 __all__ = [

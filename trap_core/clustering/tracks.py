@@ -142,10 +142,10 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
                 cores: FrameCores | None = None) -> Track:
     """Box of the cluster in each frame: around the regions of its patterns' occurrences there.
 
-    With ``graphs`` (every frame's, stacked) and ``core_share > 0`` (ours), only the regions found in at least that
-    share of the frame's occurrences in the track's place count (as many as the most shared
-    region, :func:`core_regions`): a pattern that mixes the object with a background region it
-    passes over then does not stretch the box to that whole background region. With ``pixel``
+    With ``graphs`` (every frame's, stacked) and ``core_share > 0`` (ours), only the regions found
+    in at least that share of the frame's occurrences in the track's place count (as many as the
+    most shared region, :func:`core_regions`): a pattern that mixes the object with a background
+    region it passes over then does not stretch the box to that whole background region. With ``pixel``
     too (frame pixels per pixel of the segmentation's size), edge lines alone do not widen the
     box (:meth:`PlaneGraph.nodes_box`). ``cores``: the cluster's :func:`frame_cores` at
     ``core_share``, where the caller has them already.

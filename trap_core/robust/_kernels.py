@@ -16,7 +16,8 @@ AREA_RATIO = 1.25
 def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
                    other_centroid: np.ndarray, other_area: np.ndarray, other_label: np.ndarray,
                    other_by_look: np.ndarray, box: np.ndarray, other_box: np.ndarray, around: np.ndarray,
-                   camera: np.ndarray, reach: float, tolerance: float, max_area: float, known: np.ndarray) -> np.ndarray:
+                   camera: np.ndarray, reach: float, tolerance: float, max_area: float,
+                   known: np.ndarray) -> np.ndarray:
     """Mask of the regions near ``around`` (a box) that the track's displacement to the other
     frame (``box`` to ``other_box``) puts on a look-alike region (same label, area within
     ``AREA_RATIO``, within ``tolerance`` sqrt(area) + 1 px) at least twice as close as the camera's
@@ -76,10 +77,10 @@ def _first_lookalike(label: np.ndarray, area: np.ndarray, by_look: np.ndarray, w
 
 @nb.njit(cache=True, nogil=True)
 def grow_boxes(offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
-               backdrop: np.ndarray, thickness: np.ndarray, nearest: np.ndarray, by_look: np.ndarray, frames: np.ndarray,
-               slot: np.ndarray, core: np.ndarray, searched: np.ndarray, boxes: np.ndarray, cameras: np.ndarray,
-               lag: int, reach: float, tolerance: float, max_area: float, rounds: int, thin_below: float,
-               line_reach: float) -> None:
+               backdrop: np.ndarray, thickness: np.ndarray, nearest: np.ndarray, by_look: np.ndarray,
+               frames: np.ndarray, slot: np.ndarray, core: np.ndarray, searched: np.ndarray, boxes: np.ndarray,
+               cameras: np.ndarray, lag: int, reach: float, tolerance: float, max_area: float, rounds: int,
+               thin_below: float, line_reach: float) -> None:
     """Grow ``searched`` and ``boxes`` (T, 4) of a track's ``frames`` in place over the regions
     that move with it (:func:`trap_core.robust.grow_boxes`). The video's regions are stacked:
     frame ``t``'s are rows ``offsets[t]:offsets[t + 1]`` of ``bbox`` ... ``by_look`` (the last two

@@ -14,6 +14,7 @@ on with inside the view are something else (:func:`end_at_exits`).
 from __future__ import annotations
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 
 from trap_core.clustering import Track, box_centres, in_rows, reaches_border
 from trap_core.robust.gaps import with_inferred
@@ -133,19 +134,31 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     whole_before = _seen_whole_in_run(whole, starts)
     keep = np.ones(frames.size, dtype=bool)
     row = leaving - 1
-    while row < frames.size - 1:
-        span = np.arange(row - leaving + 1, row + 2)  # the leaving frames and the next
-        exit_side = (whole_before[span[0]] & np.all(np.diff(frames[span]) == 1) & sides[span[:-1]].all(axis=0)
-                     & ~sides[row + 1] & (extent[row] < usual / 2)
-                     & np.all(np.diff(extent[span[:-1]], axis=0) <= 0, axis=0))
-        if exit_side.any():
-            back = np.flatnonzero(entering[row + 1:])
-            stop = row + 1 + (back[0] if back.size else frames.size)
-            keep[row + 1:stop] = False
-            row = stop + leaving - 1
-        else:
-            row += 1
+    for exit_row in _exits(frames, sides, extent, usual, whole_before, leaving).tolist():
+        if exit_row < row:  # among the boxes dropped after an earlier exit
+            continue
+        back = np.flatnonzero(entering[exit_row + 1:])
+        stop = exit_row + 1 + (back[0] if back.size else frames.size)
+        keep[exit_row + 1:stop] = False
+        row = stop + leaving - 1
     return track if keep.all() else in_rows(track, keep)
+
+
+def _exits(frames: np.ndarray, sides: np.ndarray, extent: np.ndarray, usual: np.ndarray, whole_before: np.ndarray,
+           leaving: int) -> np.ndarray:
+    """Rows (increasing) whose box ends an exit on some side (:func:`end_at_exits`): over the
+    ``leaving`` consecutive frames up to it the box lies on that border (``sides``, (n, 4)) and
+    its ``extent`` across it does not grow, ending under half the ``usual`` one, the next box
+    is off that border, and a whole box came before in the run (``whole_before``)."""
+    rows = np.arange(leaving - 1, frames.size - 1)
+    first = rows - leaving + 1  # each exit's first frame on the border
+    consecutive = sliding_window_view(np.diff(frames) == 1, leaving)[first].all(axis=-1)
+    on_border = sliding_window_view(sides, leaving, axis=0)[first].all(axis=-1)
+    shrinking = (sliding_window_view(np.diff(extent, axis=0) <= 0, leaving - 1, axis=0)[first].all(axis=-1)
+                 if leaving > 1 else np.ones(on_border.shape, dtype=bool))
+    exit_side = ((whole_before[first] & consecutive)[:, None] & on_border & ~sides[rows + 1]
+                 & (extent[rows] < usual / 2) & shrinking)
+    return rows[exit_side.any(axis=1)]
 
 
 def _seen_whole_in_run(whole: np.ndarray, starts: np.ndarray) -> np.ndarray:

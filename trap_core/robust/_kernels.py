@@ -299,6 +299,30 @@ def group_distances(first: np.ndarray, second: np.ndarray, frames: np.ndarray, c
 
 
 @nb.njit(cache=True, nogil=True)
+def any_pair_apart(patterns: np.ndarray, sizes: np.ndarray, min_frames: int, start: np.ndarray, end: np.ndarray,
+                   offsets: np.ndarray, points: np.ndarray) -> bool:
+    """Whether two of ``patterns`` are further apart than half the sum of their ``sizes`` in at
+    least ``min_frames`` of the frames both cover (paths as in :func:`mean_pair_distances`; a
+    pair stops being read once it has that many)."""
+    if min_frames <= 0:
+        return patterns.size > 1
+    for i in range(patterns.size - 1):
+        a = patterns[i]
+        for j in range(i + 1, patterns.size):
+            b = patterns[j]
+            limit = (sizes[b] + sizes[a]) / 2
+            count = 0
+            for frame in range(max(start[a], start[b]), min(end[a], end[b]) + 1):
+                dx = points[offsets[b] + frame - start[b], 0] - points[offsets[a] + frame - start[a], 0]
+                dy = points[offsets[b] + frame - start[b], 1] - points[offsets[a] + frame - start[a], 1]
+                if np.sqrt(dx * dx + dy * dy) > limit:
+                    count += 1
+                    if count >= min_frames:
+                        return True
+    return False
+
+
+@nb.njit(cache=True, nogil=True)
 def theil_sen(points: np.ndarray, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Velocity and position at frame 0 of the Theil-Sen line through ``points`` (k, 2) seen in
     ``frames`` (k,, distinct, k >= 2): per axis, the median of the pairwise slopes, then the

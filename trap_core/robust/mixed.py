@@ -18,6 +18,7 @@ from scipy.spatial.distance import squareform
 
 from trap_core.clustering import Hierarchy, Trajectories
 from trap_core.mining import MiningResult
+from trap_core.robust._kernels import any_pair_apart
 
 
 def pattern_sizes(result: MiningResult, patterns: np.ndarray, placed: MiningResult | None = None) -> np.ndarray:
@@ -100,16 +101,10 @@ def split_mixed(hierarchy: Hierarchy, distances: np.ndarray, paths: Trajectories
 
 def _apart_for(paths: Trajectories, patterns: np.ndarray, sizes: np.ndarray, min_frames: int) -> bool:
     """Whether two of ``patterns`` are further apart than half the sum of their sizes in at least
-    ``min_frames`` of the frames both are seen in. Only the clusters of the cut are tested (tens
-    of patterns once the background is left out), so a dense (patterns, frames) array is cheap."""
-    dense = paths.dense(patterns, np.arange(paths.start[patterns].min(), paths.end[patterns].max() + 1))
-    for row in range(patterns.size - 1):
-        gap = np.linalg.norm(dense[row + 1:] - dense[row], axis=2)  # nan where either is unseen
-        limit = (sizes[patterns[row + 1:]] + sizes[patterns[row]])[:, None] / 2
-        with np.errstate(invalid="ignore"):
-            if np.any(np.count_nonzero(gap > limit, axis=1) >= min_frames):
-                return True
-    return False
+    ``min_frames`` of the frames both are seen in (compiled: every cluster of the cut is tested,
+    and every node above it the split goes down through)."""
+    return bool(any_pair_apart(patterns, np.asarray(sizes, dtype=np.float64), min_frames, paths.start, paths.end,
+                               paths.offsets, paths.points))
 
 
 def _leaves(children: np.ndarray, n: int, node: int) -> np.ndarray:

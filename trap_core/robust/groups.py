@@ -153,15 +153,29 @@ def _running_median(values: np.ndarray, preferred: Sequence[np.ndarray], window:
 
 
 def _window_medians(samples: np.ndarray, window: int) -> np.ndarray:
-    """(n, k) per row of ``samples`` (n, k), the median of the rows at most ``window`` away,
-    per column; the rows whose window the ends cut short one by one, the others at once."""
+    """(n, k) per row of ``samples`` (n, k, finite), the median of the rows at most ``window``
+    away, per column: all windows at once, those the ends cut short as prefixes and suffixes."""
     n = len(samples)
     medians = np.empty(samples.shape)
     if n > 2 * window:
         medians[window:n - window] = np.median(sliding_window_view(samples, 2 * window + 1, axis=0), axis=-1)
-    for i in [*range(min(window, n)), *range(max(n - window, window), n)]:
-        medians[i] = np.median(samples[max(i - window, 0):i + window + 1], axis=0)
+    head = np.arange(min(window, n))  # rows whose window starts at the first row
+    medians[head] = _prefix_medians(samples, np.minimum(head + window + 1, n))
+    tail = np.arange(max(n - window, window), n)  # rows whose window ends at the last row
+    medians[tail] = _prefix_medians(samples[::-1], n - np.maximum(tail - window, 0))
     return medians
+
+
+def _prefix_medians(samples: np.ndarray, sizes: np.ndarray) -> np.ndarray:
+    """(len(sizes), k): per size m, the median of ``samples[:m]`` (finite) per column, as
+    :func:`np.median` gives it (the mean of the two middle values where m is even)."""
+    if sizes.size == 0:
+        return np.empty((0, samples.shape[1]))
+    rows = np.arange(sizes.max())
+    padded = np.where(rows[None, :, None] < sizes[:, None, None], samples[None, :rows.size], np.inf)
+    ordered = np.sort(padded, axis=1)
+    pick = np.arange(sizes.size)
+    return (ordered[pick, (sizes - 1) // 2] + ordered[pick, sizes // 2]) / 2
 
 
 def _follow_occluded(boxes: np.ndarray, partner: np.ndarray, width: float, height: float, border: float,

@@ -2155,3 +2155,14 @@ def test_track_boxes_hold_the_objects_not_the_lines_outside_their_edges() -> Non
         return [p for _, p, r in match_objects([boxes_by_frame(t) for t in tracks], truth) if r >= 0.95]
     assert min(precision(True)) >= 0.98
     assert len(precision(False)) == 2 and min(precision(False)) < 0.9
+
+
+def test_window_medians_are_those_of_each_window_the_ends_cut_short_or_not() -> None:
+    """Per row, the median of the rows at most ``window`` away, where the ends cut the window
+    short (even and odd sizes) or not, with ties: what np.median gives window by window."""
+    from trap_core.robust.groups import _window_medians
+    rng = np.random.default_rng(7)
+    for n, window in ((1, 3), (5, 3), (7, 3), (8, 3), (40, 6), (41, 20)):
+        samples = np.round(rng.normal(size=(n, 2)) * 3)
+        expected = [np.median(samples[max(i - window, 0):i + window + 1], axis=0) for i in range(n)]
+        np.testing.assert_array_equal(_window_medians(samples, window), expected)

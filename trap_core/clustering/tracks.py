@@ -183,13 +183,19 @@ def frame_face_sets(result: MiningResult, patterns: np.ndarray) -> Iterator[tupl
     """Per frame where any of ``patterns`` occurs, in frame order: the frame, the face sets of
     those occurrences (rows of ``occ_faces``) and the lifetime of each one's pattern (its
     occurrences in the whole video)."""
+    known, ends, face_sets, lifetimes = _by_frame(result, patterns)
+    for frame, start, stop in zip(known.tolist(), np.r_[0, ends[:-1]].tolist(), ends.tolist()):
+        yield frame, face_sets[start:stop], lifetimes[start:stop]
+
+
+def _by_frame(result: MiningResult, patterns: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The occurrences of ``patterns`` in frame order (stable): the frames they are in, where
+    each frame's end among them, and their face sets and lifetimes (:func:`frame_face_sets`)."""
     rows, owner = result.rows_of(patterns)
     frames = result.occ_frame[rows]
-    lifetimes = result.st_occurrences[patterns][owner]
     order = np.argsort(frames, kind="stable")
-    known, starts = np.unique(frames[order], return_index=True)
-    for frame, start, stop in zip(known.tolist(), starts, np.r_[starts[1:], order.size]):
-        yield frame, result.occ_faces[rows[order[start:stop]]], lifetimes[order[start:stop]]
+    known, counts = np.unique(frames[order], return_counts=True)
+    return known, np.cumsum(counts), result.occ_faces[rows[order]], result.st_occurrences[patterns][owner][order]
 
 
 @dataclass(frozen=True)
@@ -216,13 +222,9 @@ def frame_cores(result: MiningResult, patterns: np.ndarray, graphs: StackedGraph
     there, all frames in one compiled pass (``graphs``: every frame's, stacked). Read once per
     cluster: its track's boxes and the still-region rule
     (:func:`trap_core.robust.drop_still_regions`) both start from them."""
-    rows, owner = result.rows_of(patterns)
-    frames = result.occ_frame[rows]
-    order = np.argsort(frames, kind="stable")
-    known, counts = np.unique(frames[order], return_counts=True)
-    lifetimes = result.st_occurrences[patterns][owner][order].astype(np.float64)
-    face_sets = result.occ_faces[rows[order]].astype(np.int64).reshape(order.size, -1)
-    return FrameCores(known, *_stacked_core_regions(face_sets, lifetimes, known.astype(np.int64), np.cumsum(counts),
+    known, ends, face_sets, lifetimes = _by_frame(result, patterns)
+    return FrameCores(known, *_stacked_core_regions(face_sets.astype(np.int64).reshape(len(face_sets), -1),
+                                                    lifetimes.astype(np.float64), known.astype(np.int64), ends,
                                                     graphs.node_offsets, graphs.face_base, graphs.face_offsets,
                                                     graphs.face_half_edges, graphs.he_origin, graphs.backdrop,
                                                     graphs.bbox, share))

@@ -12,6 +12,14 @@ from trap_core.rag._kernels import nodes_box
 AREA_RATIO = 1.25
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def _mapped(camera: np.ndarray, x: float, y: float) -> tuple[float, float]:
+    """The point (x, y) mapped by the homography ``camera`` (3x3)."""
+    scale = camera[2, 0] * x + camera[2, 1] * y + camera[2, 2]
+    return (camera[0, 0] * x + camera[0, 1] * y + camera[0, 2]) / scale, \
+        (camera[1, 0] * x + camera[1, 1] * y + camera[1, 2]) / scale
+
+
 @nb.njit(cache=True, nogil=True)
 def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
                    other_centroid: np.ndarray, other_area: np.ndarray, other_label: np.ndarray,
@@ -42,9 +50,7 @@ def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
             continue
         cx, cy = centroid[i, 0], centroid[i, 1]
         mx, my = cx + shift_x, cy + shift_y
-        scale = camera[2, 0] * cx + camera[2, 1] * cy + camera[2, 2]
-        kx = (camera[0, 0] * cx + camera[0, 1] * cy + camera[0, 2]) / scale
-        ky = (camera[1, 0] * cx + camera[1, 1] * cy + camera[1, 2]) / scale
+        kx, ky = _mapped(camera, cx, cy)
         with_track = np.inf
         with_camera = np.inf
         for k in range(_first_lookalike(other_label, other_area, other_by_look, label[i], area[i]),
@@ -138,9 +144,7 @@ def found_again(centroid: np.ndarray, area: np.ndarray, label: np.ndarray, other
         i = regions[k]
         cx, cy = np.float64(centroid[i, 0]), np.float64(centroid[i, 1])
         mx, my = cx + shift[0], cy + shift[1]
-        scale = camera[2, 0] * cx + camera[2, 1] * cy + camera[2, 2]
-        kx = (camera[0, 0] * cx + camera[0, 1] * cy + camera[0, 2]) / scale
-        ky = (camera[1, 0] * cx + camera[1, 1] * cy + camera[1, 2]) / scale
+        kx, ky = _mapped(camera, cx, cy)
         for j in range(other_area.size):
             if (other_label[j] != label[i] or not other_area[j] < area_factor * area[i]
                     or not area_factor * other_area[j] > area[i]):

@@ -166,6 +166,15 @@ def _cell_medians(points: np.ndarray, cell: np.ndarray, n_cells: int) -> np.ndar
     return out
 
 
+def camera_moves(transforms: np.ndarray, frames: np.ndarray, lag: int) -> np.ndarray:
+    """(len(frames), 2, 3, 3): the camera's motion from each of ``frames`` to the frame ``lag``
+    before it and to the one ``lag`` after (clipped to the video), from ``transforms`` (frame 0
+    to frame ``t``): where a region of the frame would be, had it stayed with the scene."""
+    from_here = np.linalg.inv(transforms[frames])
+    last = len(transforms) - 1
+    return np.stack([transforms[np.clip(frames + shift, 0, last)] @ from_here for shift in (-lag, lag)], axis=1)
+
+
 def map_points(homographies: np.ndarray, points: np.ndarray) -> np.ndarray:
     """(N, 2) ``points`` mapped by one (3, 3) homography or each by its own ((N, 3, 3))."""
     homographies = np.broadcast_to(homographies, (len(points), 3, 3))

@@ -27,6 +27,7 @@ from trap_core.clustering import Track
 from trap_core.rag import StackedGraphs
 from trap_core.rag.plane_graph import edge_line_limits
 from trap_core.robust._kernels import grow_boxes as _grow_boxes
+from trap_core.robust.camera import camera_moves
 from trap_core.robust.gaps import fill_gaps
 
 # Regions larger than this times the box are background, whatever their motion, unless they
@@ -75,9 +76,7 @@ def grow_boxes(track: Track, regions: StackedGraphs, transforms: np.ndarray, lag
     slot = np.full(len(regions), -1, dtype=np.int64)
     slot[reference.frames] = np.arange(len(reference))
     frames = track.frames.astype(np.int64)
-    last = len(regions) - 1
-    from_here = np.linalg.inv(transforms[frames])
-    cameras = np.stack([transforms[np.clip(frames + shift, 0, last)] @ from_here for shift in (-lag, lag)], axis=1)
+    cameras = camera_moves(transforms, frames, lag)
     searched = track.boxes.astype(float)  # each round searches around what the rounds before took in
     boxes = searched.copy()  # and the box grows as far, but for the edge lines outside it (``pixel``)
     _grow_boxes(regions.node_offsets, regions.bbox, regions.centroid, regions.area, regions.label, regions.backdrop,

@@ -27,6 +27,7 @@ from trap_core.rag import PlaneGraph, StackedGraphs
 from trap_core.rag.plane_graph import edge_line_limits
 from trap_core.robust._kernels import found_again as _found_again
 from trap_core.robust._kernels import still_core_boxes as _still_core_boxes
+from trap_core.robust.camera import camera_moves
 
 AREA_FACTOR = 2.0  # a background region the object passes over loses or regains what it hides
 
@@ -59,9 +60,7 @@ def drop_still_regions(track: Track, cores: FrameCores, graphs: StackedGraphs, t
     slot = np.full(len(graphs), -1, dtype=np.int64)
     slot[track.frames] = np.arange(len(track))
     frames = cores.frames.astype(np.int64)
-    from_here = np.linalg.inv(transforms[frames])
-    cameras = np.stack([transforms[np.clip(frames + shift, 0, len(graphs) - 1)] @ from_here for shift in (-lag, lag)],
-                       axis=1)
+    cameras = camera_moves(transforms, frames, lag)
     boxes = track.boxes.astype(float)
     _still_core_boxes(graphs.node_offsets, graphs.bbox, graphs.centroid, graphs.area, graphs.label, graphs.thickness,
                       graphs.nearest_in_colour, frames, cores.core, cores.core_ends, cores.top, cores.top_ends, slot,

@@ -1093,6 +1093,23 @@ def test_a_cluster_of_jittering_patterns_is_still_and_a_moving_one_is_not() -> N
     assert still > 2.0 and moves < 1e-6  # the first moves against the world, the second with it
 
 
+def test_shadowed_share_counts_frames_with_a_moving_cluster_within_reach() -> None:
+    """Cluster 0 runs beside cluster 2 (6 px apart) for frames 0-39, then leaves it (60 px);
+    cluster 1 is never near: 40 of 80 frames shadowed against 0 of 50. Cluster 2 is seen in
+    frames 0-59 only, so cluster 0's last 20 frames have nothing to be near."""
+    from trap_core.clustering import summarise
+    from trap_core.robust import shadowed
+    t = np.arange(80.0)[:, None]
+    near_then_far = np.hstack([3 * t, np.where(t < 40, 6.0, 60.0)])
+    paths = Trajectories.pack([0, 10, 0], [near_then_far, np.hstack([3 * t[:50], np.full((50, 1), 200.0)]),
+                                           np.hstack([3 * t[:60], np.zeros((60, 1))])])
+    summary = summarise(np.arange(3), paths, np.ones(3), 80)
+    share = shadowed(summary, np.array([0, 1]), np.array([2]), reach=6.0)
+    assert share == pytest.approx([40 / 80, 0.0])
+    assert shadowed(summary, np.array([0]), np.array([2]), reach=5.9)[0] == 0.0  # 6 px is just beyond
+    assert shadowed(summary, np.array([0]), np.array([], dtype=np.int64), reach=6.0)[0] == 0.0
+
+
 def test_short_gaps_get_interpolated_boxes_long_or_far_ones_stay_empty() -> None:
     from trap_core.clustering import Track
     from trap_core.robust import fill_gaps

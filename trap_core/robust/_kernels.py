@@ -327,6 +327,47 @@ def any_pair_apart(patterns: np.ndarray, sizes: np.ndarray, min_frames: int, sta
 
 
 @nb.njit(cache=True, nogil=True)
+def any_pair_far(patterns: np.ndarray, distances: np.ndarray, n: int, start: np.ndarray, end: np.ndarray,
+                 sizes: np.ndarray) -> bool:
+    """Whether two of ``patterns`` (of ``n`` clustered) that share at least two frames are further
+    apart on average over them than half the sum of their ``sizes``: the mean distance is
+    recovered from the condensed ``distances`` ``d_traj * (2 - d_ov)`` (TRAP_SPEC section 5),
+    pair by pair, so that no (n, n) matrix is built and the first such pair ends the search."""
+    for i in range(patterns.size - 1):
+        for j in range(i + 1, patterns.size):
+            a, b = min(patterns[i], patterns[j]), max(patterns[i], patterns[j])
+            common = min(end[a], end[b]) - max(start[a], start[b]) + 1
+            if common < 2:
+                continue
+            shared = common / ((end[a] - start[a] + 1) + (end[b] - start[b] + 1) - common)
+            mean_distance = distances[n * a - a * (a + 1) // 2 + b - a - 1] / (2 - shared)
+            if mean_distance > (sizes[a] + sizes[b]) / 2:
+                return True
+    return False
+
+
+@nb.njit(cache=True, nogil=True)
+def near_paths(mine: np.ndarray, theirs: np.ndarray, reach: np.float32) -> np.ndarray:
+    """(len(mine), n_frames) whether path ``mine[i]`` has one of ``theirs`` within ``reach`` in
+    each frame (paths (k, n_frames, 2), float32, NaN where not seen). Distances are taken in
+    float32, as numpy takes them of float32 points."""
+    near = np.zeros(mine.shape[:2], dtype=np.bool_)
+    for frame in range(mine.shape[1]):
+        for i in range(mine.shape[0]):
+            if np.isnan(mine[i, frame, 0]):
+                continue
+            for j in range(theirs.shape[0]):
+                if np.isnan(theirs[j, frame, 0]):
+                    continue
+                dx = mine[i, frame, 0] - theirs[j, frame, 0]
+                dy = mine[i, frame, 1] - theirs[j, frame, 1]
+                if np.sqrt(dx * dx + dy * dy) <= reach:
+                    near[i, frame] = True
+                    break
+    return near
+
+
+@nb.njit(cache=True, nogil=True)
 def theil_sen(points: np.ndarray, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Velocity and position at frame 0 of the Theil-Sen line through ``points`` (k, 2) seen in
     ``frames`` (k,, distinct, k >= 2): per axis, the median of the pairwise slopes, then the

@@ -24,6 +24,7 @@ from trap_core.clustering import ClusterSummary
 from trap_core.mining import MiningResult
 from trap_core.mining._kernels import occurrence_geometry
 from trap_core.rag import PlaneGraph
+from trap_core.robust._kernels import near_paths
 
 HELD_SHARE = 0.5  # a cluster with more of its occurrences holding the backdrop may be an object seen only through it
 SHADOWED_SHARE = 0.5  # a cluster seen again without the backdrop is taken where at most this share of it is shadowed
@@ -59,13 +60,7 @@ def without_backdrop(result: MiningResult, graphs: Sequence[PlaneGraph]) -> Mini
 def shadowed(summary: ClusterSummary, clusters: np.ndarray, others: np.ndarray, reach: float) -> np.ndarray:
     """Per cluster of ``clusters``: the share of the frames it covers where one of ``others`` is
     seen too, its mean path within ``reach`` px (``summary`` holds both)."""
-    mine, theirs = _dense_paths(summary, clusters), _dense_paths(summary, others)
-    near = np.zeros(mine.shape[:2], dtype=bool)
-    for frame in range(mine.shape[1]):  # frame by frame: few clusters are seen in any one
-        here, there = np.flatnonzero(~np.isnan(mine[:, frame, 0])), ~np.isnan(theirs[:, frame, 0])
-        if here.size and there.any():
-            gaps = np.linalg.norm(mine[here, frame, None] - theirs[there, frame][None], axis=2)
-            near[here, frame] = (gaps <= reach).any(axis=1)
+    near = near_paths(_dense_paths(summary, clusters), _dense_paths(summary, others), np.float32(reach))
     return near.sum(axis=1) / np.maximum(summary.covered[clusters].sum(axis=1), 1)
 
 

@@ -14,11 +14,10 @@ hierarchy until every cluster passes.
 from __future__ import annotations
 
 import numpy as np
-from scipy.spatial.distance import squareform
 
 from trap_core.clustering import Hierarchy, Trajectories
 from trap_core.mining import MiningResult
-from trap_core.robust._kernels import any_pair_apart
+from trap_core.robust._kernels import any_pair_apart, any_pair_far
 
 
 def pattern_sizes(result: MiningResult, patterns: np.ndarray, placed: MiningResult | None = None) -> np.ndarray:
@@ -75,13 +74,7 @@ def split_mixed(hierarchy: Hierarchy, distances: np.ndarray, paths: Trajectories
     n = hierarchy.n
     if n < 2:
         return hierarchy.labels.copy()
-    common = np.clip(np.minimum(paths.end[:, None], paths.end[None, :])
-                     - np.maximum(paths.start[:, None], paths.start[None, :]) + 1, 0, None)
-    spans = paths.end - paths.start + 1
-    shared = common / (spans[:, None] + spans[None, :] - common)
-    mean_distance = squareform(distances) / (2 - shared)
-    mean_sizes = sizes if mean_sizes is None else mean_sizes
-    far = (common >= 2) & (mean_distance > (mean_sizes[:, None] + mean_sizes[None, :]) / 2)
+    mean_sizes = np.asarray(sizes if mean_sizes is None else mean_sizes, dtype=np.float64)
     children = hierarchy.linkage[:, :2].astype(np.int64)
     below_cut = n + (n - hierarchy.cut_level)  # nodes formed by the merges made before the cut
     labels = np.empty(n, dtype=np.int64)
@@ -90,7 +83,7 @@ def split_mixed(hierarchy: Hierarchy, distances: np.ndarray, paths: Trajectories
     while stack:
         node = stack.pop()
         leaves = _leaves(children, n, node)
-        if node < n or (node < below_cut and not far[np.ix_(leaves, leaves)].any()
+        if node < n or (node < below_cut and not any_pair_far(leaves, distances, n, paths.start, paths.end, mean_sizes)
                         and not _apart_for(paths, leaves, sizes, min_apart)):
             labels[leaves] = next_label
             next_label += 1

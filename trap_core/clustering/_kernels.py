@@ -41,6 +41,48 @@ def pairwise_distance(start: np.ndarray, end: np.ndarray, offsets: np.ndarray, p
 
 
 @nb.njit(cache=True, nogil=True)
+def interpolate_samples(frames: np.ndarray, points: np.ndarray, bounds: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets and points of one trajectory per sample ``frames[bounds[i]:bounds[i + 1]]``
+    (sorted, distinct, at least one) with ``points`` (k, 2) there: every frame of its span,
+    linearly interpolated between samples (TRAP_SPEC section 4). Written as ``np.interp``
+    computes it (the sample's own value on a sample frame, else ``slope * (x - x0) + y0``), so
+    both give the same bits."""
+    n = bounds.size - 1
+    offsets = np.zeros(n + 1, dtype=np.int64)
+    for i in range(n):
+        offsets[i + 1] = offsets[i] + frames[bounds[i + 1] - 1] - frames[bounds[i]] + 1
+    out = np.empty((offsets[n], 2))
+    for i in range(n):
+        first = frames[bounds[i]]
+        out[offsets[i]] = points[bounds[i]]
+        for j in range(bounds[i], bounds[i + 1] - 1):
+            x0, x1 = float(frames[j]), float(frames[j + 1])
+            for axis in range(2):
+                slope = (points[j + 1, axis] - points[j, axis]) / (x1 - x0)
+                for frame in range(frames[j] + 1, frames[j + 1]):
+                    out[offsets[i] + frame - first, axis] = slope * (frame - x0) + points[j, axis]
+            out[offsets[i] + frames[j + 1] - first] = points[j + 1]
+    return offsets, out
+
+
+@nb.njit(cache=True, nogil=True)
+def cluster_sums(labels: np.ndarray, start: np.ndarray, end: np.ndarray, offsets: np.ndarray, points: np.ndarray,
+                 n_clusters: int, n_frames: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per cluster and frame: the sum of its patterns' points and how many are summed (patterns
+    added in index order)."""
+    sums = np.zeros((n_clusters, n_frames, 2))
+    counts = np.zeros((n_clusters, n_frames), dtype=np.int64)
+    for pattern in range(labels.size):
+        cluster = labels[pattern]
+        for frame in range(start[pattern], end[pattern] + 1):
+            row = offsets[pattern] + frame - start[pattern]
+            sums[cluster, frame, 0] += points[row, 0]
+            sums[cluster, frame, 1] += points[row, 1]
+            counts[cluster, frame] += 1
+    return sums, counts
+
+
+@nb.njit(cache=True, nogil=True)
 def sharing_components(nodes: np.ndarray, ends: np.ndarray, n_nodes: int) -> np.ndarray:
     """Component (numbered 0.. in the order of each one's root set) of each set of nodes (set
     ``i`` is ``nodes[ends[i - 1]:ends[i]]``), sets that share a node being linked: the places

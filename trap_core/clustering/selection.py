@@ -5,6 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from trap_core.clustering._kernels import cluster_sums
 from trap_core.clustering.trajectory import Trajectories
 from trap_core.mining import MiningResult
 
@@ -27,19 +28,12 @@ def summarise(labels: np.ndarray, tracks: Trajectories, occurrences_per_pattern:
               n_frames: int) -> ClusterSummary:
     """Length, counts and mean path of each cluster (labels 0..C-1 over the patterns)."""
     n_clusters = int(labels.max()) + 1 if labels.size else 0
-    covered = np.zeros((n_clusters, n_frames), dtype=bool)
-    sums = np.zeros((n_clusters, n_frames, 2))
-    counts = np.zeros((n_clusters, n_frames))
-    for pattern, cluster in enumerate(labels):
-        span = slice(tracks.start[pattern], tracks.end[pattern] + 1)
-        covered[cluster, span] = True
-        sums[cluster, span] += tracks.of(pattern)
-        counts[cluster, span] += 1
-    samples = []
-    for cluster in range(n_clusters):
-        frames = np.flatnonzero(covered[cluster])
-        samples.append((frames, sums[cluster, frames] / counts[cluster, frames, None]))
-    paths = Trajectories.from_samples(samples)
+    sums, counts = cluster_sums(np.asarray(labels, dtype=np.int64), tracks.start, tracks.end, tracks.offsets,
+                                np.asarray(tracks.points, dtype=np.float64), n_clusters, n_frames)
+    covered = counts > 0
+    cluster_of, frames = np.nonzero(covered)  # cluster by cluster, frames increasing
+    paths = Trajectories.interpolated(frames.astype(np.int64), sums[cluster_of, frames] / counts[cluster_of, frames, None],
+                                      np.r_[0, np.cumsum(covered.sum(axis=1))])
     return ClusterSummary(covered, np.bincount(labels, minlength=n_clusters),
                           np.bincount(labels, weights=occurrences_per_pattern, minlength=n_clusters).astype(np.int64),
                           paths)

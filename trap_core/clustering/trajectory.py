@@ -5,6 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from trap_core.clustering._kernels import interpolate_samples
 from trap_core.mining import MiningResult
 
 
@@ -54,14 +55,16 @@ class Trajectories:
                             np.concatenate(pieces) if pieces else np.empty((0, 2)))
 
     @staticmethod
-    def from_samples(samples: list[tuple[np.ndarray, np.ndarray]]) -> Trajectories:
-        """One trajectory per ``(frames, points)``: points at those (sorted, distinct) frames,
-        linearly interpolated across the frames between them (TRAP_SPEC section 4)."""
-        pieces = []
-        for frames, points in samples:
-            span = np.arange(frames[0], frames[-1] + 1)
-            pieces.append(np.column_stack([np.interp(span, frames, points[:, axis]) for axis in (0, 1)]))
-        return Trajectories.pack([frames[0] for frames, _ in samples], pieces)
+    def interpolated(frames: np.ndarray, points: np.ndarray, bounds: np.ndarray) -> Trajectories:
+        """One trajectory per sample ``frames[bounds[i]:bounds[i + 1]]`` (int64, sorted and
+        distinct in each, never empty) with ``points`` (float64) there: linearly interpolated
+        across the frames between them (TRAP_SPEC section 4)."""
+        bounds = np.asarray(bounds, dtype=np.int64)
+        if np.any(np.diff(bounds) <= 0):
+            raise ValueError("every trajectory needs at least one sample")
+        offsets, interpolated = interpolate_samples(frames, points, bounds)
+        start = frames[bounds[:-1]]
+        return Trajectories(start, start + np.diff(offsets) - 1, offsets, interpolated)
 
 
 @dataclass(frozen=True)
@@ -95,4 +98,7 @@ def trajectories(observed: ObservedPaths, patterns: np.ndarray) -> Trajectories:
     """Trajectory of each of ``patterns`` (in that order) from its mean position per observed
     frame (TRAP_SPEC section 4)."""
     bounds = np.searchsorted(observed.pattern, np.stack([patterns, np.asarray(patterns) + 1]))
-    return Trajectories.from_samples([(observed.frame[lo:hi], observed.position[lo:hi]) for lo, hi in bounds.T])
+    lengths = bounds[1] - bounds[0]
+    ends = np.cumsum(lengths)
+    rows = np.arange(ends[-1] if ends.size else 0) + np.repeat(bounds[0] - (ends - lengths), lengths)
+    return Trajectories.interpolated(observed.frame[rows], observed.position[rows], np.r_[0, ends])

@@ -368,6 +368,34 @@ def near_paths(mine: np.ndarray, theirs: np.ndarray, reach: np.float32) -> np.nd
 
 
 @nb.njit(cache=True, nogil=True)
+def goes_along(short_rows: np.ndarray, long_rows: np.ndarray, sizes: np.ndarray, start: np.ndarray, end: np.ndarray,
+               offsets: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Per pattern of ``short_rows``: whether one of ``long_rows`` lies within half the smaller
+    of their ``sizes`` of it in at least half of its frames (paths as in
+    :func:`mean_pair_distances`; points and reach in float32, to ``(reach / 2) ** 2``)."""
+    along = np.zeros(short_rows.size, dtype=np.bool_)
+    for i in range(short_rows.size):
+        a = short_rows[i]
+        length = end[a] - start[a] + 1
+        for b in long_rows:
+            first, last = max(start[a], start[b]), min(end[a], end[b])
+            if first > last:
+                continue
+            reach = np.float32(min(sizes[b], sizes[a])) / np.float32(2)
+            limit = reach * reach
+            count = 0
+            for frame in range(first, last + 1):
+                dx = np.float32(points[offsets[b] + frame - start[b], 0]) - np.float32(points[offsets[a] + frame - start[a], 0])
+                dy = np.float32(points[offsets[b] + frame - start[b], 1]) - np.float32(points[offsets[a] + frame - start[a], 1])
+                if dx * dx + dy * dy <= limit:
+                    count += 1
+            if 2 * count >= length:
+                along[i] = True
+                break
+    return along
+
+
+@nb.njit(cache=True, nogil=True)
 def theil_sen(points: np.ndarray, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Velocity and position at frame 0 of the Theil-Sen line through ``points`` (k, 2) seen in
     ``frames`` (k,, distinct, k >= 2): per axis, the median of the pairwise slopes, then the

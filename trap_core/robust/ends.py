@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from trap_core.clustering import Trajectories
+from trap_core.robust._kernels import goes_along
 
 
 def alone_at_ends(paths: Trajectories, short: np.ndarray, sizes: np.ndarray) -> np.ndarray:
@@ -39,15 +40,6 @@ def alone_at_ends(paths: Trajectories, short: np.ndarray, sizes: np.ndarray) -> 
     short_rows, long_rows = np.flatnonzero(short), np.flatnonzero(~short)
     if not short_rows.size or not long_rows.size:
         return alone
-    frames = np.unique(np.concatenate([np.arange(paths.start[p], paths.end[p] + 1) for p in short_rows]))
-    long_at = paths.dense(long_rows, frames, np.float32)  # the long patterns over the short ones' frames
-    long_start, long_end = paths.start[long_rows], paths.end[long_rows]
-    for pattern in short_rows:
-        lo, hi = np.searchsorted(frames, [paths.start[pattern], paths.end[pattern] + 1])
-        seen = np.flatnonzero((long_start <= paths.end[pattern]) & (long_end >= paths.start[pattern]))
-        offset = long_at[seen, lo:hi] - paths.of(pattern).astype(np.float32)  # NaN where a long one is not seen
-        reach = np.minimum(sizes[long_rows[seen]], sizes[pattern]).astype(np.float32) / 2
-        with np.errstate(invalid="ignore"):
-            along = np.einsum("ijk,ijk->ij", offset, offset) <= (reach * reach)[:, None]
-        alone[pattern] = not np.any(np.count_nonzero(along, axis=1) >= (hi - lo) / 2)
+    alone[short_rows] = ~goes_along(short_rows, long_rows, np.asarray(sizes, dtype=np.float64), paths.start, paths.end,
+                                    paths.offsets, paths.points)
     return alone

@@ -216,13 +216,17 @@ def synthetic_graphs(config: SceneConfig, params: TrapParams, compressed: str | 
     (``jpeg`` or ``png``): each frame is compressed and decoded first, as a bag of
     ``sensor_msgs/CompressedImage`` would bring it."""
     truth: list[dict[int, tuple]] = [{} for _ in range(config.objects)]
+    return list(graphs_of(synthetic_frames(config, compressed, truth), params)), truth
 
-    def frames() -> Iterator[np.ndarray]:
-        for frame in render(config):
+
+def synthetic_frames(config: SceneConfig, compressed: str | None = None,
+                     truth: list[dict[int, tuple]] | None = None) -> Iterator[np.ndarray]:
+    """The RGB frames of a synthetic video, each compressed and decoded first where
+    ``compressed`` (as :func:`synthetic_graphs` takes them); each object's box in each frame is
+    written into ``truth`` (one dict per object) when given."""
+    for frame in render(config):
+        if truth is not None:
             for obj, box in enumerate(frame.boxes):
                 if box:
                     truth[obj][frame.index] = box
-            yield frame.rgb if compressed is None else decode_compressed(compressed, compress_image(frame.rgb,
-                                                                                                    compressed))
-
-    return list(graphs_of(frames(), params)), truth
+        yield frame.rgb if compressed is None else decode_compressed(compressed, compress_image(frame.rgb, compressed))

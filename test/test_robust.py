@@ -2183,3 +2183,37 @@ def test_window_medians_are_those_of_each_window_the_ends_cut_short_or_not() -> 
         samples = np.round(rng.normal(size=(n, 2)) * 3)
         expected = [np.median(samples[max(i - window, 0):i + window + 1], axis=0) for i in range(n)]
         np.testing.assert_array_equal(_window_medians(samples, window), expected)
+
+
+def test_moving_regions_reads_only_nearby_lookalikes_yet_finds_what_all_of_them_give() -> None:
+    """The windowed search of look-alikes (ordered by label, then x) against the rule read over
+    every region of the other frame, on random frames of few labels (a road's hundreds of
+    look-alikes), with the camera panning, still, or unknown (NaN)."""
+    from trap_core.robust._kernels import AREA_RATIO, moving_regions
+    rng = np.random.default_rng(7)
+    for trial in range(300):
+        n, m = int(rng.integers(1, 60)), int(rng.integers(1, 60))
+        centroid, other_centroid = rng.uniform(0, 200, (n, 2)), rng.uniform(0, 200, (m, 2))
+        area, other_area = rng.integers(5, 400, n).astype(float), rng.integers(5, 400, m).astype(float)
+        label, other_label = rng.integers(0, 3, n), rng.integers(0, 3, m)
+        if trial % 3 == 0:  # some regions exactly where the track's motion puts them
+            other_centroid[: min(n, m)] = centroid[: min(n, m)] + [6.0, -2.0]
+            other_label[: min(n, m)], other_area[: min(n, m)] = label[: min(n, m)], area[: min(n, m)]
+        bbox = np.column_stack([centroid - 5, centroid + 5])
+        box, other_box, around = np.array([50.0, 50, 40, 40]), np.array([56.0, 48, 40, 40]), np.array([40.0, 40, 80, 80])
+        camera = np.eye(3)
+        camera[:2, 2] = [[0.0, 0.0], [3.0, 1.0], [np.nan, np.nan]][trial % 3]
+        by_place = np.lexsort((other_centroid[:, 0], other_label)).astype(np.int64)
+        found = moving_regions(bbox, centroid, area, label, other_centroid, other_area, other_label, by_place, box,
+                               other_box, around, camera, 0.5, 0.3, 4.0, np.full(n, -1, dtype=np.int8))
+        for i in range(n):
+            near = (bbox[i, 2] >= 0 and bbox[i, 3] >= 0 and bbox[i, 0] <= 160 and bbox[i, 1] <= 160
+                    and area[i] <= 4.0 * 80 * 80)
+            alike = (other_label == label[i]) & (AREA_RATIO * other_area > area[i]) & (other_area < AREA_RATIO * area[i])
+            moved = np.hypot(*(other_centroid[alike] - (centroid[i] + [6.0, -2.0])).T)
+            kept = np.hypot(*(other_centroid[alike] - (centroid[i] + camera[:2, 2])).T)
+            kept = kept[~np.isnan(kept)]
+            with_track = moved.min() if moved.size else np.inf
+            with_camera = kept.min() if kept.size else np.inf
+            expected = near and with_track <= 0.3 * np.sqrt(area[i]) + 1 and with_track < with_camera / 2
+            assert found[i] == expected, (trial, i)

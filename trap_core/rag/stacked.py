@@ -16,7 +16,7 @@ class StackedGraphs:
     """The plane graphs of a video's frames, one frame's after the other's.
 
     Frame ``t``'s regions are rows ``node_offsets[t]:node_offsets[t + 1]`` of the region arrays
-    (each a :class:`PlaneGraph` attribute of that name, ``nearest_in_colour`` and ``by_look``
+    (each a :class:`PlaneGraph` attribute of that name, ``nearest_in_colour`` and ``by_place``
     numbered within the frame). Its faces are ``face_base[t]:face_base[t + 1]`` of
     ``face_offsets``, which point into ``face_half_edges``, which point into ``he_origin``: a
     frame's face ``f`` is face ``face_base[t] + f`` here, and its nodes are numbered within the
@@ -32,7 +32,7 @@ class StackedGraphs:
     backdrop: np.ndarray
     thickness: np.ndarray
     nearest_in_colour: np.ndarray
-    by_look: np.ndarray       # each frame's regions ordered by label, then area: look-alikes side by side
+    by_place: np.ndarray      # each frame's regions ordered by label, then x: look-alikes side by side, by place
     face_base: np.ndarray     # (n_frames + 1,)
     face_offsets: np.ndarray  # (faces + 1,)
     face_half_edges: np.ndarray
@@ -55,7 +55,7 @@ class StackedGraphs:
         face_half_edges = np.concatenate([g.face_half_edges + base for g, base in zip(graphs, half_edge_base)])
         return cls(starts([g.n_nodes for g in graphs]), stacked("bbox"), stacked("centroid"), stacked("area"),
                    stacked("label"), stacked("backdrop"), stacked("thickness"), stacked("nearest_in_colour"),
-                   np.concatenate([np.lexsort((g.area, g.label)) for g in graphs]).astype(np.int64), face_base,
+                   np.concatenate([np.lexsort((g.centroid[:, 0], g.label)) for g in graphs]).astype(np.int64), face_base,
                    face_offsets, face_half_edges.astype(np.int64), stacked("he_origin").astype(np.int64))
 
     def __len__(self) -> int:

@@ -23,15 +23,16 @@ def _mapped(camera: np.ndarray, x: float, y: float) -> tuple[float, float]:
 @nb.njit(cache=True, nogil=True)
 def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
                    other_centroid: np.ndarray, other_area: np.ndarray, other_label: np.ndarray,
-                   other_by_look: np.ndarray, box: np.ndarray, other_box: np.ndarray, around: np.ndarray,
+                   other_by_place: np.ndarray, box: np.ndarray, other_box: np.ndarray, around: np.ndarray,
                    camera: np.ndarray, reach: float, tolerance: float, max_area: float,
                    known: np.ndarray) -> np.ndarray:
     """Mask of the regions near ``around`` (a box) that the track's displacement to the other
     frame (``box`` to ``other_box``) puts on a look-alike region (same label, area within
     ``AREA_RATIO``, within ``tolerance`` sqrt(area) + 1 px) at least twice as close as the camera's
     motion ``camera`` (3x3) does. Regions over ``max_area`` times ``around`` are left out unless
-    their box encloses it. ``other_by_look``: the other frame's rows ordered by label, then area,
-    so that only a region's look-alikes are read, not every region of the frame. ``known``: per
+    their box encloses it. ``other_by_place``: the other frame's rows ordered by label, then x,
+    so that only the look-alikes within reach of each motion's point are read (over a road or
+    gravel of few labels a region has hundreds of look-alikes in the frame). ``known``: per
     region, whether it was found so before for the same frames, motions and camera (-1: not
     looked for yet), filled in here: a box that grows again searches mostly the same regions."""
     shift_x = other_box[0] + other_box[2] / 2 - (box[0] + box[2] / 2)
@@ -50,31 +51,42 @@ def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
             continue
         cx, cy = centroid[i, 0], centroid[i, 1]
         mx, my = cx + shift_x, cy + shift_y
-        kx, ky = _mapped(camera, cx, cy)
+        limit = tolerance * np.sqrt(area[i]) + 1
+        # the nearest look-alike to where the track's motion puts the region counts only within
+        # ``limit``, and is then within ``limit`` in x: only those are read
         with_track = np.inf
-        with_camera = np.inf
-        for k in range(_first_lookalike(other_label, other_area, other_by_look, label[i], area[i]),
-                       other_by_look.size):
-            j = other_by_look[k]
-            if other_label[j] != label[i] or other_area[j] >= AREA_RATIO * area[i]:
+        for k in range(_first_at(other_label, other_centroid, other_by_place, label[i], mx - limit - 1),
+                       other_by_place.size):
+            j = other_by_place[k]
+            if other_label[j] != label[i] or other_centroid[j, 0] > mx + limit + 1:
                 break
-            with_track = min(with_track, np.hypot(other_centroid[j, 0] - mx, other_centroid[j, 1] - my))
-            with_camera = min(with_camera, np.hypot(other_centroid[j, 0] - kx, other_centroid[j, 1] - ky))
-        found[i] = with_track <= tolerance * np.sqrt(area[i]) + 1 and with_track < with_camera / 2
+            if AREA_RATIO * other_area[j] > area[i] and other_area[j] < AREA_RATIO * area[i]:
+                with_track = min(with_track, np.hypot(other_centroid[j, 0] - mx, other_centroid[j, 1] - my))
+        found[i] = with_track <= limit
+        if found[i]:  # unless a look-alike lies within twice that of where the camera's motion puts it
+            kx, ky = _mapped(camera, cx, cy)
+            for k in range(_first_at(other_label, other_centroid, other_by_place, label[i], kx - 2 * with_track - 1),
+                           other_by_place.size):
+                j = other_by_place[k]
+                if other_label[j] != label[i] or other_centroid[j, 0] > kx + 2 * with_track + 1:
+                    break
+                if (AREA_RATIO * other_area[j] > area[i] and other_area[j] < AREA_RATIO * area[i]
+                        and np.hypot(other_centroid[j, 0] - kx, other_centroid[j, 1] - ky) / 2 <= with_track):
+                    found[i] = False
+                    break
         known[i] = 1 if found[i] else 0
     return found
 
 
 @nb.njit(cache=True, nogil=True)
-def _first_lookalike(label: np.ndarray, area: np.ndarray, by_look: np.ndarray, want_label: int,
-                     want_area: float) -> int:
-    """First position in ``by_look`` (rows ordered by label, then area) of a region of label
-    ``want_label`` with an area over ``want_area / AREA_RATIO`` (binary search)."""
-    lo, hi = 0, by_look.size
+def _first_at(label: np.ndarray, centroid: np.ndarray, by_place: np.ndarray, want_label: int, min_x: float) -> int:
+    """First position in ``by_place`` (rows ordered by label, then x) of a region of label
+    ``want_label`` at x ``min_x`` or beyond (binary search)."""
+    lo, hi = 0, by_place.size
     while lo < hi:
         middle = (lo + hi) // 2
-        row = by_look[middle]
-        if label[row] < want_label or (label[row] == want_label and AREA_RATIO * area[row] <= want_area):
+        row = by_place[middle]
+        if label[row] < want_label or (label[row] == want_label and centroid[row, 0] < min_x):
             lo = middle + 1
         else:
             hi = middle
@@ -83,13 +95,13 @@ def _first_lookalike(label: np.ndarray, area: np.ndarray, by_look: np.ndarray, w
 
 @nb.njit(cache=True, nogil=True)
 def grow_boxes(offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
-               backdrop: np.ndarray, thickness: np.ndarray, nearest: np.ndarray, by_look: np.ndarray,
+               backdrop: np.ndarray, thickness: np.ndarray, nearest: np.ndarray, by_place: np.ndarray,
                frames: np.ndarray, slot: np.ndarray, core: np.ndarray, searched: np.ndarray, boxes: np.ndarray,
                cameras: np.ndarray, lag: int, reach: float, tolerance: float, max_area: float, rounds: int,
                thin_below: float, line_reach: float) -> None:
     """Grow ``searched`` and ``boxes`` (T, 4) of a track's ``frames`` in place over the regions
     that move with it (:func:`trap_core.robust.grow_boxes`). The video's regions are stacked:
-    frame ``t``'s are rows ``offsets[t]:offsets[t + 1]`` of ``bbox`` ... ``by_look`` (the last two
+    frame ``t``'s are rows ``offsets[t]:offsets[t + 1]`` of ``bbox`` ... ``by_place`` (the last two
     numbered within the frame). ``slot``: row of ``core`` (the boxes motions are read between) of
     each video frame, -1 where none; ``cameras`` (T, 2, 3, 3): the camera's motion from each
     frame to ``lag`` frames before and after. ``thin_below`` > 0: edge lines left out of
@@ -114,7 +126,7 @@ def grow_boxes(offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area
             for k in range(n_sides):
                 olo, ohi = offsets[others[k]], offsets[others[k] + 1]
                 found = moving_regions(bbox[lo:hi], centroid[lo:hi], area[lo:hi], label[lo:hi], centroid[olo:ohi],
-                                       area[olo:ohi], label[olo:ohi], by_look[olo:ohi], core[slot[frame]],
+                                       area[olo:ohi], label[olo:ohi], by_place[olo:ohi], core[slot[frame]],
                                        core[slot[others[k]]], searched[i], cameras[i, sides[k]], reach, tolerance,
                                        max_area, known[k])
                 moving = (moving | found) if round_ == 0 else (moving & found)

@@ -80,7 +80,7 @@ def grow_boxes(track: Track, regions: StackedGraphs, transforms: np.ndarray, lag
     searched = track.boxes.astype(float)  # each round searches around what the rounds before took in
     boxes = searched.copy()  # and the box grows as far, but for the edge lines outside it (``pixel``)
     _grow_boxes(regions.node_offsets, regions.bbox, regions.centroid, regions.area, regions.label, regions.backdrop,
-                regions.thickness, regions.nearest_in_colour, regions.by_look, frames, slot,
+                regions.thickness, regions.nearest_in_colour, regions.by_place, frames, slot,
                 reference.boxes.astype(float), searched, boxes, cameras, lag, reach, tolerance, MAX_AREA, rounds,
                 *edge_line_limits(pixel))
     return dataclasses.replace(track, boxes=boxes)

@@ -408,6 +408,29 @@ def goes_along(short_rows: np.ndarray, long_rows: np.ndarray, sizes: np.ndarray,
 
 
 @nb.njit(cache=True, nogil=True)
+def later_and_last(key: np.ndarray, owner: np.ndarray, lag: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per observation (sorted by ``owner``, then frame; ``key`` increasing, ``lag`` > 0 apart
+    within one owner where frames are): the first observation whose key is at least its own plus
+    ``lag``, and the last of its owner's. One pass of two pointers, where a binary search per
+    observation read millions of keys."""
+    n = key.size
+    later = np.empty(n, dtype=np.int64)
+    last = np.empty(n, dtype=np.int64)
+    k = 0
+    for i in range(n):
+        k = max(k, i)
+        while k < n and key[k] < key[i] + lag:
+            k += 1
+        later[i] = k
+    run_last = n - 1
+    for i in range(n - 1, -1, -1):
+        if i < n - 1 and owner[i] != owner[i + 1]:
+            run_last = i
+        last[i] = run_last
+    return later, last
+
+
+@nb.njit(cache=True, nogil=True)
 def theil_sen(points: np.ndarray, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Velocity and position at frame 0 of the Theil-Sen line through ``points`` (k, 2) seen in
     ``frames`` (k,, distinct, k >= 2): per axis, the median of the pairwise slopes, then the

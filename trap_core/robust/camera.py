@@ -28,7 +28,7 @@ import cv2
 import numpy as np
 
 from trap_core.clustering import ClusterSummary, ObservedPaths, reaches_border
-from trap_core.robust._kernels import matched_regions
+from trap_core.robust._kernels import later_and_last, matched_regions
 from trap_core.rag import PlaneGraph
 
 GRID = 12  # cells per side of the frame, one vote each for the camera's motion
@@ -290,8 +290,7 @@ def _chunk_speed(pattern: np.ndarray, frame: np.ndarray, position: np.ndarray, i
     local = pattern - pattern[0]
     stride = int(frame.max()) + lag + 1
     key = local * stride + frame
-    later = np.searchsorted(key, key + lag)  # observations are sorted by pattern, then frame
-    last = np.searchsorted(local, local, side="right") - 1
+    later, last = later_and_last(key, local, lag)  # observations are sorted by pattern, then frame
     later = np.where((later < key.size) & (later <= last), later, -1)
     first = np.r_[True, local[1:] != local[:-1]]
     short = first & (later < 0) & (last > np.arange(key.size))  # seen for less than lag frames

@@ -431,6 +431,35 @@ def later_and_last(key: np.ndarray, owner: np.ndarray, lag: int) -> tuple[np.nda
 
 
 @nb.njit(cache=True, nogil=True)
+def window_lines(centres: np.ndarray, starts: np.ndarray, window: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per start: the Theil-Sen line (velocity, position at frame 0) through the ``centres``
+    (n_frames, 2; NaN where not seen) seen in frames ``start..start + window - 1`` (clipped to the
+    video), and whether it could be drawn (three centres at least; NaN lines where not): what
+    :func:`trap_core.robust.motion.straight_line` gives for each window, in one call."""
+    lines = np.full((starts.size, 2, 2), np.nan)
+    drawn = np.zeros(starts.size, dtype=np.bool_)
+    for s in range(starts.size):
+        lo, hi = max(starts[s], 0), min(starts[s] + window, centres.shape[0])
+        count = 0
+        for frame in range(lo, hi):
+            if not np.isnan(centres[frame, 0]):
+                count += 1
+        if count < 3:
+            continue
+        points = np.empty((count, 2))
+        frames = np.empty(count)
+        count = 0
+        for frame in range(lo, hi):
+            if not np.isnan(centres[frame, 0]):
+                points[count, 0], points[count, 1] = centres[frame, 0], centres[frame, 1]
+                frames[count] = frame
+                count += 1
+        lines[s, 0], lines[s, 1] = theil_sen(points, frames)
+        drawn[s] = True
+    return lines, drawn
+
+
+@nb.njit(cache=True, nogil=True)
 def theil_sen(points: np.ndarray, frames: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Velocity and position at frame 0 of the Theil-Sen line through ``points`` (k, 2) seen in
     ``frames`` (k,, distinct, k >= 2): per axis, the median of the pairwise slopes, then the

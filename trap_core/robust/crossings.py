@@ -17,6 +17,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from trap_core.clustering import Track, box_centres, box_iou, box_path, in_rows, usual_size, with_frames
+from trap_core.robust._kernels import window_lines
 from trap_core.robust.duplicates import TURN
 from trap_core.robust.motion import straight_line
 from trap_core.robust.rejoin import structure_similarity
@@ -158,9 +159,14 @@ def _best_cut(first: np.ndarray, second: np.ndarray, cuts: range, window: int, l
     line through the blend fits neither pairing. The frames skipped are counted in the spread
     of the jump, and the exchange is made halfway across them."""
     def lines(starts: range) -> np.ndarray:
-        """(len(starts), 2, 2, 2): :func:`_lines` over ``window`` frames from each start on."""
-        return np.array([_lines(first, second, np.arange(max(start, 0), min(start + window, len(first))))
-                         for start in starts]).reshape(len(starts), 2, 2, 2)
+        """(len(starts), 2, 2, 2): :func:`_lines` over ``window`` frames from each start on
+        (compiled over all the starts: every frame of every meeting is a cut to try)."""
+        at = np.arange(starts.start, starts.stop, dtype=np.int64)
+        (own, own_drawn), (other, other_drawn) = (window_lines(np.asarray(path, dtype=np.float64), at, window)
+                                                  for path in (first, second))
+        both = np.stack([own, other], axis=1)
+        both[~(own_drawn & other_drawn)] = np.nan
+        return both
 
     before = lines(range(cuts.start - window, cuts.stop - window))
     after = lines(range(cuts.start, cuts.stop + window))

@@ -437,3 +437,20 @@ def stacked_nodes_boxes(node_offsets: np.ndarray, bbox: np.ndarray, thickness: n
                            reach)
         start = ends[k]
     return out
+
+
+@nb.njit(cache=True, nogil=True)
+def median_gain(colour: np.ndarray, carried: np.ndarray, fallback: np.ndarray, dark: float) -> np.ndarray:
+    """Per channel: the median of ``colour / carried`` over the rows bright enough (at least
+    ``dark``) in both, ``fallback``'s where none is (:mod:`trap_core.rag.label_memory`)."""
+    gain = fallback.copy()
+    ratios = np.empty(colour.shape[0])
+    for channel in range(3):
+        n = 0
+        for i in range(colour.shape[0]):
+            if colour[i, channel] >= dark and carried[i, channel] >= dark:
+                ratios[n] = colour[i, channel] / carried[i, channel]
+                n += 1
+        if n:
+            gain[channel] = np.median(ratios[:n])
+    return gain

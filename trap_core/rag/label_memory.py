@@ -24,6 +24,7 @@ import dataclasses
 import numpy as np
 from scipy.spatial import cKDTree
 
+from trap_core.rag._kernels import median_gain
 from trap_core.rag.plane_graph import PlaneGraph, colour_label
 
 AREA_RATIO = 1.5
@@ -58,7 +59,7 @@ class LabelMemory:
                     & (their_area * AREA_RATIO > area)
                     & (np.abs(colour - previous.colour[nearest]).max(axis=1) <= COLOUR_STEP))
         if same.any():
-            gain = _gain(colour[same], self._carried[nearest[same]], self.gain)
+            gain = median_gain(colour[same], self._carried[nearest[same]], self.gain, DARK)
             if np.abs(gain / self.gain - 1).max() > STEADY:
                 self.gain = gain
         carried = colour / self.gain
@@ -69,13 +70,3 @@ class LabelMemory:
         graph = dataclasses.replace(graph, label=label)
         self._previous, self._carried = graph, carried
         return graph
-
-
-def _gain(colour: np.ndarray, carried: np.ndarray, fallback: np.ndarray) -> np.ndarray:
-    """Per channel: median of ``colour / carried`` over the regions bright enough in both."""
-    gain = fallback.copy()
-    for channel in range(3):
-        bright = (colour[:, channel] >= DARK) & (carried[:, channel] >= DARK)
-        if bright.any():
-            gain[channel] = np.median(colour[bright, channel] / carried[bright, channel])
-    return gain

@@ -392,6 +392,8 @@ def assign_occurrences(group_start, frame, position, extent, eps, tau, reach):
     last_extent = np.empty(count)
     n_chains = 0
     eps2 = eps * eps
+    taken_at = np.full(count, -1, dtype=np.int64)  # the step in which each chain last took an occurrence
+    step = 0
     for g in range(group_start.size - 1):
         lo, hi = group_start[g], group_start[g + 1]
         active = np.empty(hi - lo, dtype=np.int64)
@@ -426,13 +428,12 @@ def assign_occurrences(group_start, frame, position, extent, eps, tau, reach):
                         chn[n_pairs] = c
                         n_pairs += 1
             order = np.argsort(costs[:n_pairs])
-            taken = np.zeros(n_chains + (j - i), dtype=np.bool_)
             for p in order:
                 k, c = occ[p], chn[p]
-                if chain[k] >= 0 or taken[c]:
+                if chain[k] >= 0 or taken_at[c] == step:
                     continue
                 chain[k] = c
-                taken[c] = True
+                taken_at[c] = step
                 dt = t - last_frame[c]
                 vel_x[c] = 0.5 * vel_x[c] + 0.5 * (position[k, 0] - last_x[c]) / dt
                 vel_y[c] = 0.5 * vel_y[c] + 0.5 * (position[k, 1] - last_y[c]) / dt
@@ -452,4 +453,5 @@ def assign_occurrences(group_start, frame, position, extent, eps, tau, reach):
                     active[n_active] = c
                     n_active += 1
             i = j
+            step += 1
     return chain

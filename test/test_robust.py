@@ -2189,7 +2189,7 @@ def test_moving_regions_reads_only_nearby_lookalikes_yet_finds_what_all_of_them_
     """The windowed search of look-alikes (ordered by label, then x) against the rule read over
     every region of the other frame, on random frames of few labels (a road's hundreds of
     look-alikes), with the camera panning, still, or unknown (NaN)."""
-    from trap_core.robust._kernels import AREA_RATIO, moving_regions
+    from trap_core.robust._kernels import AREA_RATIO, moving_regions, near_box
     rng = np.random.default_rng(7)
     for trial in range(300):
         n, m = int(rng.integers(1, 60)), int(rng.integers(1, 60))
@@ -2204,8 +2204,9 @@ def test_moving_regions_reads_only_nearby_lookalikes_yet_finds_what_all_of_them_
         camera = np.eye(3)
         camera[:2, 2] = [[0.0, 0.0], [3.0, 1.0], [np.nan, np.nan]][trial % 3]
         by_place = np.lexsort((other_centroid[:, 0], other_label)).astype(np.int64)
-        found = moving_regions(bbox, centroid, area, label, other_centroid, other_area, other_label, by_place, box,
-                               other_box, around, camera, 0.5, 0.3, 4.0, np.full(n, -1, dtype=np.int8))
+        near = near_box(bbox, area, around, 0.5, 4.0)
+        found = moving_regions(near, centroid, area, label, other_centroid, other_area, other_label, by_place, box,
+                               other_box, camera, 0.3, np.full(n, -1, dtype=np.int8))
         for i in range(n):
             near = (bbox[i, 2] >= 0 and bbox[i, 3] >= 0 and bbox[i, 0] <= 160 and bbox[i, 1] <= 160
                     and area[i] <= 4.0 * 80 * 80)

@@ -21,31 +21,22 @@ def _mapped(camera: np.ndarray, x: float, y: float) -> tuple[float, float]:
 
 
 @nb.njit(cache=True, nogil=True)
-def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
+def moving_regions(near: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
                    other_centroid: np.ndarray, other_area: np.ndarray, other_label: np.ndarray,
-                   other_by_place: np.ndarray, box: np.ndarray, other_box: np.ndarray, around: np.ndarray,
-                   camera: np.ndarray, reach: float, tolerance: float, max_area: float,
-                   known: np.ndarray) -> np.ndarray:
-    """Mask of the regions near ``around`` (a box) that the track's displacement to the other
-    frame (``box`` to ``other_box``) puts on a look-alike region (same label, area within
+                   other_by_place: np.ndarray, box: np.ndarray, other_box: np.ndarray, camera: np.ndarray,
+                   tolerance: float, known: np.ndarray) -> np.ndarray:
+    """Mask of the regions ``near`` (rows, :func:`near_box`) that the track's displacement to the
+    other frame (``box`` to ``other_box``) puts on a look-alike region (same label, area within
     ``AREA_RATIO``, within ``tolerance`` sqrt(area) + 1 px) at least twice as close as the camera's
-    motion ``camera`` (3x3) does. Regions over ``max_area`` times ``around`` are left out unless
-    their box encloses it. ``other_by_place``: the other frame's rows ordered by label, then x,
-    so that only the look-alikes within reach of each motion's point are read (over a road or
+    motion ``camera`` (3x3) does. ``other_by_place``: the other frame's rows ordered by label, then
+    x, so that only the look-alikes within reach of each motion's point are read (over a road or
     gravel of few labels a region has hundreds of look-alikes in the frame). ``known``: per
     region, whether it was found so before for the same frames, motions and camera (-1: not
     looked for yet), filled in here: a box that grows again searches mostly the same regions."""
     shift_x = other_box[0] + other_box[2] / 2 - (box[0] + box[2] / 2)
     shift_y = other_box[1] + other_box[3] / 2 - (box[1] + box[3] / 2)
-    x, y, w, h = around[0], around[1], around[2], around[3]
-    found = np.zeros(bbox.shape[0], dtype=np.bool_)
-    for i in range(bbox.shape[0]):
-        if (bbox[i, 2] < x - reach * w or bbox[i, 3] < y - reach * h or bbox[i, 0] > x + w + reach * w
-                or bbox[i, 1] > y + h + reach * h):
-            continue
-        encloses = bbox[i, 0] <= x and bbox[i, 1] <= y and bbox[i, 2] >= x + w - 1 and bbox[i, 3] >= y + h - 1
-        if area[i] > max_area * w * h and not encloses:
-            continue
+    found = np.zeros(centroid.shape[0], dtype=np.bool_)
+    for i in near:
         if known[i] >= 0:
             found[i] = known[i] == 1
             continue
@@ -76,6 +67,26 @@ def moving_regions(bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
                     break
         known[i] = 1 if found[i] else 0
     return found
+
+
+@nb.njit(cache=True, nogil=True)
+def near_box(bbox: np.ndarray, area: np.ndarray, around: np.ndarray, reach: float, max_area: float) -> np.ndarray:
+    """Rows of the regions whose box meets ``around`` (x, y, w, h) grown by ``reach`` times its
+    size on each side, but for those over ``max_area`` times ``around`` whose box does not
+    enclose it. Read once per round of a grown box, for both frames its motions are read to."""
+    x, y, w, h = around[0], around[1], around[2], around[3]
+    rows = np.empty(bbox.shape[0], dtype=np.int64)
+    n = 0
+    for i in range(bbox.shape[0]):
+        if (bbox[i, 2] < x - reach * w or bbox[i, 3] < y - reach * h or bbox[i, 0] > x + w + reach * w
+                or bbox[i, 1] > y + h + reach * h):
+            continue
+        encloses = bbox[i, 0] <= x and bbox[i, 1] <= y and bbox[i, 2] >= x + w - 1 and bbox[i, 3] >= y + h - 1
+        if area[i] > max_area * w * h and not encloses:
+            continue
+        rows[n] = i
+        n += 1
+    return rows[:n]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -123,12 +134,12 @@ def grow_boxes(offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area
         known = np.full((2, hi - lo), -1, dtype=np.int8)  # each region's verdict per side, for every round
         for round_ in range(rounds if n_sides == 2 else 1):
             moving = np.zeros(hi - lo, dtype=np.bool_) if round_ == 0 else np.ones(hi - lo, dtype=np.bool_)
+            near = near_box(bbox[lo:hi], area[lo:hi], searched[i], reach, max_area)
             for k in range(n_sides):
                 olo, ohi = offsets[others[k]], offsets[others[k] + 1]
-                found = moving_regions(bbox[lo:hi], centroid[lo:hi], area[lo:hi], label[lo:hi], centroid[olo:ohi],
+                found = moving_regions(near, centroid[lo:hi], area[lo:hi], label[lo:hi], centroid[olo:ohi],
                                        area[olo:ohi], label[olo:ohi], by_place[olo:ohi], core[slot[frame]],
-                                       core[slot[others[k]]], searched[i], cameras[i, sides[k]], reach, tolerance,
-                                       max_area, known[k])
+                                       core[slot[others[k]]], cameras[i, sides[k]], tolerance, known[k])
                 moving = (moving | found) if round_ == 0 else (moving & found)
             moving &= ~backdrop[lo:hi]
             held = np.flatnonzero(moving)

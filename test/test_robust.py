@@ -2218,3 +2218,15 @@ def test_moving_regions_reads_only_nearby_lookalikes_yet_finds_what_all_of_them_
             with_camera = kept.min() if kept.size else np.inf
             expected = near and with_track <= 0.3 * np.sqrt(area[i]) + 1 and with_track < with_camera / 2
             assert found[i] == expected, (trial, i)
+
+
+def test_compiled_sum_has_the_bits_of_numpys_mean() -> None:
+    """Rejoining compares compiled means of distances with a threshold where it compared
+    ``np.mean``: the compiled sum adds as numpy does (pairwise, eight accumulators), or a mean on
+    the threshold could fall on the other side of it."""
+    from trap_core.robust._kernels import _numpy_sum
+    rng = np.random.default_rng(11)
+    for n in list(range(1, 300)) + [511, 512, 1000, 1023, 1777]:
+        values = rng.exponential(10 ** rng.uniform(-3, 3), n)
+        assert _numpy_sum(values, 0, n) / n == np.mean(values)
+        assert _numpy_sum(np.r_[np.zeros(5), values], 5, n) == np.sum(values)

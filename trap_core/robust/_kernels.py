@@ -326,6 +326,104 @@ def group_distances(first: np.ndarray, second: np.ndarray, frames: np.ndarray, c
 
 
 @nb.njit(cache=True, nogil=True)
+def _numpy_sum(values: np.ndarray, lo: int, n: int) -> float:
+    """Sum of ``values[lo:lo + n]`` added as numpy adds a float64 array, so that a mean taken here
+    has the bits of ``np.mean``: halves (cut at multiples of 8) summed apart and added, down to
+    blocks of at most 128 (:func:`_block_sum`). Walked with a stack of its own: numba's cache
+    does not load recursive functions safely."""
+    first = np.empty(64, dtype=np.int64)
+    size = np.empty(64, dtype=np.int64)
+    step = np.zeros(64, dtype=np.int8)  # 0: left half next, 1: right half next, 2: add the halves
+    left = np.empty(64)
+    top, total = 0, 0.0
+    first[0], size[0] = lo, n
+    while top >= 0:
+        if size[top] <= 128:
+            total = _block_sum(values, first[top], size[top])
+            top -= 1
+            continue
+        half = size[top] // 2
+        half -= half % 8
+        if step[top] == 0:
+            step[top] = 1
+            top += 1
+            first[top], size[top], step[top] = first[top - 1], half, 0
+        elif step[top] == 1:
+            left[top], step[top] = total, 2
+            top += 1
+            first[top], size[top], step[top] = first[top - 1] + half, size[top - 1] - half, 0
+        else:
+            total = left[top] + total
+            top -= 1
+    return total
+
+
+@nb.njit(cache=True, nogil=True)
+def _block_sum(values: np.ndarray, lo: int, n: int) -> float:
+    """numpy's sum of at most 128 float64 values: in order under 8, else eight running sums
+    added pairwise, then the rest in order."""
+    if n < 8:
+        total = 0.0
+        for i in range(n):
+            total += values[lo + i]
+        return total
+    r0, r1, r2, r3 = values[lo], values[lo + 1], values[lo + 2], values[lo + 3]
+    r4, r5, r6, r7 = values[lo + 4], values[lo + 5], values[lo + 6], values[lo + 7]
+    i = 8
+    while i < n - n % 8:
+        r0 += values[lo + i]
+        r1 += values[lo + i + 1]
+        r2 += values[lo + i + 2]
+        r3 += values[lo + i + 3]
+        r4 += values[lo + i + 4]
+        r5 += values[lo + i + 5]
+        r6 += values[lo + i + 6]
+        r7 += values[lo + i + 7]
+        i += 8
+    total = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
+    while i < n:
+        total += values[lo + i]
+        i += 1
+    return total
+
+
+@nb.njit(cache=True, nogil=True)
+def companions_apart(group: np.ndarray, group_covered: np.ndarray, companions: np.ndarray, covered: np.ndarray,
+                     start: np.ndarray, offsets: np.ndarray, points: np.ndarray,
+                     max_apart: float) -> tuple[int, int]:
+    """Of the ``companions`` (clusters) seen in frames the clusters in the mask ``group`` cover
+    (``group_covered``): how many are, and how many of those are on average more than
+    ``max_apart`` px from the group over those frames (each frame's distance as
+    :func:`group_distances`, their mean as ``np.mean``)."""
+    n_frames = covered.shape[1]
+    sums = np.zeros((n_frames, 2))
+    counts = np.zeros(n_frames)
+    for cluster in range(group.size):
+        if group[cluster]:
+            for frame in range(start[cluster], start[cluster] + offsets[cluster + 1] - offsets[cluster]):
+                if covered[cluster, frame]:
+                    row = offsets[cluster] + frame - start[cluster]
+                    sums[frame, 0] += points[row, 0]
+                    sums[frame, 1] += points[row, 1]
+                    counts[frame] += 1
+    distances = np.empty(n_frames)
+    seen, apart = 0, 0
+    for companion in companions:
+        n = 0
+        for frame in range(start[companion], start[companion] + offsets[companion + 1] - offsets[companion]):
+            if group_covered[frame] and covered[companion, frame]:
+                row = offsets[companion] + frame - start[companion]
+                dx = sums[frame, 0] / counts[frame] - points[row, 0] / 1.0
+                dy = sums[frame, 1] / counts[frame] - points[row, 1] / 1.0
+                distances[n] = np.sqrt(dx * dx + dy * dy)
+                n += 1
+        if n:
+            seen += 1
+            apart += _numpy_sum(distances, 0, n) / n > max_apart
+    return seen, apart
+
+
+@nb.njit(cache=True, nogil=True)
 def any_pair_apart(patterns: np.ndarray, sizes: np.ndarray, min_frames: int, start: np.ndarray, end: np.ndarray,
                    offsets: np.ndarray, points: np.ndarray) -> bool:
     """Whether two of ``patterns`` are further apart than half the sum of their ``sizes`` in at

@@ -35,7 +35,7 @@ from scipy import sparse
 
 from trap_core.clustering import ClusterSummary, Trajectories, reaches_border, summarise
 from trap_core.mining import MiningResult
-from trap_core.robust._kernels import group_distances, mean_pair_distances
+from trap_core.robust._kernels import companions_apart, group_distances, mean_pair_distances
 from trap_core.robust.camera import map_points
 
 
@@ -167,14 +167,12 @@ def _on_another_object(summary: ClusterSummary, group: np.ndarray, group_covered
     most of the clusters it goes along with (``along``, outside both groups) that are seen at
     once with that group are more than ``max_apart`` px from it. Most, not any: a cluster
     that mixes two look-alikes goes along with one for a while and is seen with the other."""
-    one = np.arange(group.size)
+    outside = (group != group[first]) & (group != group[second])
+    paths = summary.paths
     for mine, theirs in ((first, group[second]), (second, group[first])):
-        votes = []
-        for companion in np.flatnonzero(along[mine] & (group != group[first]) & (group != group[second])).tolist():
-            both = np.flatnonzero(group_covered[theirs] & summary.covered[companion])
-            if both.size:
-                votes.append(_apart(summary, group == theirs, one == companion, both) > max_apart)
-        if 2 * sum(votes) > len(votes):
+        seen, apart = companions_apart(group == theirs, group_covered[theirs], np.flatnonzero(along[mine] & outside),
+                                       summary.covered, paths.start, paths.offsets, paths.points, max_apart)
+        if 2 * apart > seen:
             return True
     return False
 

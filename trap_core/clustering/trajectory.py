@@ -30,10 +30,10 @@ class Trajectories:
         """Points of trajectory ``index`` in ``frames`` (within its span)."""
         return self.of(index)[np.asarray(frames) - self.start[index]]
 
-    def dense(self, rows: np.ndarray, frames: np.ndarray, dtype: type = np.float64) -> np.ndarray:
+    def dense(self, rows: np.ndarray, frames: np.ndarray) -> np.ndarray:
         """(len(rows), len(frames), 2): the points of trajectories ``rows`` in ``frames``
         (increasing), NaN outside their spans; for comparing many trajectories frame by frame."""
-        out = np.full((len(rows), len(frames), 2), np.nan, dtype=dtype)
+        out = np.full((len(rows), len(frames), 2), np.nan)
         for row, index in enumerate(rows):
             lo, hi = np.searchsorted(frames, [self.start[index], self.end[index] + 1])
             out[row, lo:hi] = self.at(index, frames[lo:hi])

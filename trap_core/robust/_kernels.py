@@ -20,6 +20,12 @@ def _mapped(camera: np.ndarray, x: float, y: float) -> tuple[float, float]:
         (camera[1, 0] * x + camera[1, 1] * y + camera[1, 2]) / scale
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def _alike_in_area(area: float, other_area: float, factor: float) -> bool:
+    """Whether a region of ``other_area`` is within ``factor`` of ``area`` either way (look-alikes)."""
+    return factor * other_area > area and other_area < factor * area
+
+
 @nb.njit(cache=True, nogil=True)
 def moving_regions(near: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
                    other_centroid: np.ndarray, other_area: np.ndarray, other_label: np.ndarray,
@@ -51,7 +57,7 @@ def moving_regions(near: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
             j = other_by_place[k]
             if other_label[j] != label[i] or other_centroid[j, 0] > mx + limit + 1:
                 break
-            if AREA_RATIO * other_area[j] > area[i] and other_area[j] < AREA_RATIO * area[i]:
+            if _alike_in_area(area[i], other_area[j], AREA_RATIO):
                 with_track = min(with_track, np.hypot(other_centroid[j, 0] - mx, other_centroid[j, 1] - my))
         found[i] = with_track <= limit
         if found[i]:  # unless a look-alike lies within twice that of where the camera's motion puts it
@@ -61,7 +67,7 @@ def moving_regions(near: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
                 j = other_by_place[k]
                 if other_label[j] != label[i] or other_centroid[j, 0] > kx + 2 * with_track + 1:
                     break
-                if (AREA_RATIO * other_area[j] > area[i] and other_area[j] < AREA_RATIO * area[i]
+                if (_alike_in_area(area[i], other_area[j], AREA_RATIO)
                         and np.hypot(other_centroid[j, 0] - kx, other_centroid[j, 1] - ky) / 2 <= with_track):
                     found[i] = False
                     break
@@ -169,8 +175,7 @@ def found_again(centroid: np.ndarray, area: np.ndarray, label: np.ndarray, other
         mx, my = cx + shift[0], cy + shift[1]
         kx, ky = _mapped(camera, cx, cy)
         for j in range(other_area.size):
-            if (other_label[j] != label[i] or not other_area[j] < area_factor * area[i]
-                    or not area_factor * other_area[j] > area[i]):
+            if other_label[j] != label[i] or not _alike_in_area(area[i], other_area[j], area_factor):
                 continue
             with_track[k] = min(with_track[k], np.hypot(other_centroid[j, 0] - mx, other_centroid[j, 1] - my))
             with_camera[k] = min(with_camera[k], np.hypot(other_centroid[j, 0] - kx, other_centroid[j, 1] - ky))
@@ -303,26 +308,33 @@ def group_distances(first: np.ndarray, second: np.ndarray, frames: np.ndarray, c
     """Per frame of ``frames``: the distance between the mean positions of the clusters in the
     masks ``first`` and ``second`` that cover it (``covered``: (C, n_frames); each frame covered
     by both; paths as in :func:`mean_pair_distances`), each mean summed in cluster order."""
-    sums = np.zeros((2, frames.size, 2))
-    counts = np.zeros((2, frames.size))
-    for side in range(2):
-        members = first if side == 0 else second
-        for cluster in range(members.size):
-            if not members[cluster]:
-                continue
-            for k in range(frames.size):
-                frame = frames[k]
-                if covered[cluster, frame]:
-                    row = offsets[cluster] + frame - start[cluster]
-                    sums[side, k, 0] += points[row, 0]
-                    sums[side, k, 1] += points[row, 1]
-                    counts[side, k] += 1
+    first_sums, first_counts = _group_sums(first, covered, start, offsets, points)
+    second_sums, second_counts = _group_sums(second, covered, start, offsets, points)
     out = np.empty(frames.size)
     for k in range(frames.size):
-        dx = sums[0, k, 0] / counts[0, k] - sums[1, k, 0] / counts[1, k]
-        dy = sums[0, k, 1] / counts[0, k] - sums[1, k, 1] / counts[1, k]
+        frame = frames[k]
+        dx = first_sums[frame, 0] / first_counts[frame] - second_sums[frame, 0] / second_counts[frame]
+        dy = first_sums[frame, 1] / first_counts[frame] - second_sums[frame, 1] / second_counts[frame]
         out[k] = np.sqrt(dx * dx + dy * dy)
     return out
+
+
+@nb.njit(cache=True, nogil=True)
+def _group_sums(members: np.ndarray, covered: np.ndarray, start: np.ndarray, offsets: np.ndarray,
+                points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per frame of the video: the sum of the positions of the clusters in the mask ``members``
+    that cover it, added in cluster order, and how many they are."""
+    sums = np.zeros((covered.shape[1], 2))
+    counts = np.zeros(covered.shape[1])
+    for cluster in range(members.size):
+        if members[cluster]:
+            for frame in range(start[cluster], start[cluster] + offsets[cluster + 1] - offsets[cluster]):
+                if covered[cluster, frame]:
+                    row = offsets[cluster] + frame - start[cluster]
+                    sums[frame, 0] += points[row, 0]
+                    sums[frame, 1] += points[row, 1]
+                    counts[frame] += 1
+    return sums, counts
 
 
 @nb.njit(cache=True, nogil=True)
@@ -395,26 +407,16 @@ def companions_apart(group: np.ndarray, group_covered: np.ndarray, companions: n
     (``group_covered``): how many are, and how many of those are on average more than
     ``max_apart`` px from the group over those frames (each frame's distance as
     :func:`group_distances`, their mean as ``np.mean``)."""
-    n_frames = covered.shape[1]
-    sums = np.zeros((n_frames, 2))
-    counts = np.zeros(n_frames)
-    for cluster in range(group.size):
-        if group[cluster]:
-            for frame in range(start[cluster], start[cluster] + offsets[cluster + 1] - offsets[cluster]):
-                if covered[cluster, frame]:
-                    row = offsets[cluster] + frame - start[cluster]
-                    sums[frame, 0] += points[row, 0]
-                    sums[frame, 1] += points[row, 1]
-                    counts[frame] += 1
-    distances = np.empty(n_frames)
+    sums, counts = _group_sums(group, covered, start, offsets, points)
+    distances = np.empty(covered.shape[1])
     seen, apart = 0, 0
     for companion in companions:
         n = 0
         for frame in range(start[companion], start[companion] + offsets[companion + 1] - offsets[companion]):
             if group_covered[frame] and covered[companion, frame]:
                 row = offsets[companion] + frame - start[companion]
-                dx = sums[frame, 0] / counts[frame] - points[row, 0] / 1.0
-                dy = sums[frame, 1] / counts[frame] - points[row, 1] / 1.0
+                dx = sums[frame, 0] / counts[frame] - points[row, 0]
+                dy = sums[frame, 1] / counts[frame] - points[row, 1]
                 distances[n] = np.sqrt(dx * dx + dy * dy)
                 n += 1
         if n:

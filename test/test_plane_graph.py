@@ -156,6 +156,18 @@ def test_grey_regions_get_finer_labels_than_colours() -> None:
     assert colour_label(np.array([[100.0, 100.0, 101.0], [250.0, 10.0, 10.0]]), 4).tolist() == [21, 48]
 
 
+def test_colour_levels_are_clipped_and_read_alike_from_float32() -> None:
+    """Colours past either end of the range fall in the first or last level (a brightened mean can
+    pass 256), and a graph's float32 colours get the labels of the same colours in float64."""
+    from trap_core.rag import colour_label
+    colours = np.array([[-3.0, 256.0, 300.0], [255.9, 255.9, 255.9], [-1.0, -1.0, -1.0], [63.99, 64.0, 127.5]])
+    assert colour_label(colours, 4).tolist() == [3 + 3 * 4, 64 + 15, 64, 1 * 4 + 1]
+    grid = np.random.default_rng(0).uniform(0, 256, (500, 3)).astype(np.float32)
+    grid[::3] = grid[::3, :1]
+    for bins in (2, 4, 8):
+        assert np.array_equal(colour_label(grid, bins), colour_label(grid.astype(np.float64), bins))
+
+
 def test_bad_input() -> None:
     with pytest.raises(GraphError, match="do not match"):
         build_plane_graph(np.zeros((3, 3), dtype=np.int32), 1, np.zeros((4, 3, 3), dtype=np.uint8))

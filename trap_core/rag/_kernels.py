@@ -440,6 +440,21 @@ def stacked_nodes_boxes(node_offsets: np.ndarray, bbox: np.ndarray, thickness: n
 
 
 @nb.njit(cache=True, nogil=True)
+def colour_labels(colour: np.ndarray, bins: int) -> np.ndarray:
+    """:func:`trap_core.rag.plane_graph.colour_label` of float64 mean colours (n, 3)."""
+    label = np.empty(colour.shape[0], dtype=np.int64)
+    for i in range(colour.shape[0]):
+        r, g, b = colour[i, 0], colour[i, 1], colour[i, 2]
+        if r == g and g == b:
+            label[i] = bins ** 3 + min(max(np.int64(r * bins ** 2 / 256.0), 0), bins ** 2 - 1)
+        else:
+            label[i] = ((min(max(np.int64(r * bins / 256.0), 0), bins - 1) * bins
+                         + min(max(np.int64(g * bins / 256.0), 0), bins - 1)) * bins
+                        + min(max(np.int64(b * bins / 256.0), 0), bins - 1))
+    return label
+
+
+@nb.njit(cache=True, nogil=True)
 def median_gain(colour: np.ndarray, carried: np.ndarray, fallback: np.ndarray, dark: float) -> np.ndarray:
     """Per channel: the median of ``colour / carried`` over the rows bright enough (at least
     ``dark``) in both, ``fallback``'s where none is (:mod:`trap_core.rag.label_memory`)."""
@@ -454,3 +469,42 @@ def median_gain(colour: np.ndarray, carried: np.ndarray, fallback: np.ndarray, d
         if n:
             gain[channel] = np.median(ratios[:n])
     return gain
+
+
+@nb.njit(cache=True, nogil=True)
+def remembered_labels(colour: np.ndarray, area: np.ndarray, distance: np.ndarray, nearest: np.ndarray,
+                      their_colour: np.ndarray, their_area: np.ndarray, their_carried: np.ndarray,
+                      their_label: np.ndarray, gain: np.ndarray, bins: int, reach: float, area_ratio: float,
+                      colour_step: float, steady: float, dark: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """One frame of :class:`trap_core.rag.label_memory.LabelMemory`: each region's label, its
+    colour under the first light and the light's gain, given its ``nearest`` region of the
+    previous frame (``their_``: that frame's regions; ``nearest`` empty where there is none)
+    and the ``distance`` to it."""
+    n = colour.shape[0]
+    same = np.zeros(n, dtype=np.bool_)
+    for i in range(nearest.size):
+        j = nearest[i]
+        a, b = area[i], their_area[j]
+        if distance[i] <= 0.5 * np.sqrt(a) + reach and b < area_ratio * a and b * area_ratio > a:
+            step = 0.0
+            for c in range(3):
+                step = max(step, abs(colour[i, c] - their_colour[j, c]))
+            same[i] = step <= colour_step
+    kept = np.flatnonzero(same)
+    if kept.size:
+        measured = median_gain(colour[kept], their_carried[nearest[kept]], gain, dark)
+        change = 0.0
+        for c in range(3):
+            change = max(change, abs(measured[c] / gain[c] - 1))
+        if change > steady:
+            gain = measured
+    carried = np.empty((n, 3))
+    for i in range(n):
+        for c in range(3):
+            carried[i, c] = colour[i, c] / gain[c]
+    for i in kept:
+        carried[i] = their_carried[nearest[i]]
+    label = colour_labels(carried, bins)
+    for i in kept:
+        label[i] = their_label[nearest[i]]
+    return label, carried, gain

@@ -24,8 +24,8 @@ import dataclasses
 import numpy as np
 from scipy.spatial import cKDTree
 
-from trap_core.rag._kernels import median_gain
-from trap_core.rag.plane_graph import PlaneGraph, colour_label
+from trap_core.rag._kernels import remembered_labels
+from trap_core.rag.plane_graph import PlaneGraph
 
 AREA_RATIO = 1.5
 REACH_PX = 3.0
@@ -47,26 +47,16 @@ class LabelMemory:
         self.gain = np.ones(3)
 
     def __call__(self, graph: PlaneGraph) -> PlaneGraph:
-        colour = graph.colour.astype(float)
         previous = self._previous
-        same = np.zeros(graph.n_nodes, dtype=bool)
-        nearest = np.zeros(graph.n_nodes, dtype=np.int64)
+        distance, nearest = np.zeros(0), np.zeros(0, dtype=np.int64)
         if previous is not None and graph.n_nodes and previous.n_nodes:
             distance, nearest = cKDTree(previous.centroid).query(graph.centroid, k=1)
-            area = graph.area.astype(float)
-            their_area = previous.area[nearest].astype(float)
-            same = ((distance <= 0.5 * np.sqrt(area) + REACH_PX) & (their_area < AREA_RATIO * area)
-                    & (their_area * AREA_RATIO > area)
-                    & (np.abs(colour - previous.colour[nearest]).max(axis=1) <= COLOUR_STEP))
-        if same.any():
-            gain = median_gain(colour[same], self._carried[nearest[same]], self.gain, DARK)
-            if np.abs(gain / self.gain - 1).max() > STEADY:
-                self.gain = gain
-        carried = colour / self.gain
-        carried[same] = self._carried[nearest[same]]
-        label = colour_label(carried, self._bins)
-        if same.any():
-            label[same] = previous.label[nearest[same]]
+        if previous is None:
+            previous = graph  # nothing is matched to it
+        label, carried, self.gain = remembered_labels(
+            graph.colour.astype(float), graph.area.astype(float), distance, nearest.astype(np.int64),
+            previous.colour.astype(float), previous.area.astype(float), self._carried, previous.label.astype(np.int64),
+            self.gain, self._bins, REACH_PX, AREA_RATIO, COLOUR_STEP, STEADY, DARK)
         graph = dataclasses.replace(graph, label=label)
         self._previous, self._carried = graph, carried
         return graph

@@ -6,7 +6,7 @@ from functools import cached_property
 
 import numpy as np
 
-from trap_core.rag._kernels import (drop_short_contacts, region_stats, rotation_system, sets_nodes,
+from trap_core.rag._kernels import (colour_labels, drop_short_contacts, region_stats, rotation_system, sets_nodes,
                                     trace_boundary_graph, trace_faces)
 from trap_core.rag._kernels import nodes_box as _nodes_box
 from trap_core.rag._kernels import outer_lines as _outer_lines
@@ -201,12 +201,10 @@ def colour_label(colour: np.ndarray, bins: int) -> np.ndarray:
     A grey mean (all channels equal: every region of a mono camera's frame) is cut into
     ``bins``^2 levels instead, labels ``bins``^3 and up: with ``bins`` levels on the grey axis
     alone, a mono video would have a handful of labels and its patterns would tell little apart.
+    Levels are read in float64 (compiled: :class:`~trap_core.rag.label_memory.LabelMemory`
+    labels every frame's new regions with it).
     """
-    levels = np.clip((colour * bins / 256.0).astype(np.int64), 0, bins - 1)
-    label = (levels[:, 0] * bins + levels[:, 1]) * bins + levels[:, 2]
-    grey = (colour[:, 0] == colour[:, 1]) & (colour[:, 1] == colour[:, 2])
-    label[grey] = bins ** 3 + np.clip((colour[grey, 0] * bins ** 2 / 256.0).astype(np.int64), 0, bins ** 2 - 1)
-    return label
+    return colour_labels(np.asarray(colour, dtype=np.float64), bins)
 
 
 def build_plane_graph(labels: np.ndarray, n_regions: int, rgb: np.ndarray, colour_bins: int = 4,

@@ -591,3 +591,31 @@ def theil_sen(points: np.ndarray, frames: np.ndarray) -> tuple[np.ndarray, np.nd
             offsets[i] = points[i, axis] - velocity[axis] * frames[i]
         origin[axis] = np.median(offsets)
     return velocity, origin
+
+
+@nb.njit(cache=True, nogil=True)
+def stray_rows(centres: np.ndarray, frames: np.ndarray, window: int, limit: float) -> np.ndarray:
+    """Per frame of ``frames`` (a track's, increasing): whether its centre (``centres``: the
+    track's, one per frame from 0, NaN where it has none) lies farther than ``limit`` from the
+    :func:`theil_sen` line through the other centres within ``window`` frames (not with fewer
+    than three of them) (:func:`trap_core.robust.drop_strays`)."""
+    n = centres.shape[0]
+    stray = np.zeros(frames.size, dtype=np.bool_)
+    seen = np.empty(2 * window, dtype=np.float64)
+    points = np.empty((2 * window, 2), dtype=np.float64)
+    for row in range(frames.size):
+        frame = frames[row]
+        k = 0
+        for other in range(max(frame - window, 0), min(frame + window, n - 1) + 1):
+            if other != frame and not np.isnan(centres[other, 0]):
+                seen[k] = other
+                points[k, 0] = centres[other, 0]
+                points[k, 1] = centres[other, 1]
+                k += 1
+        if k < 3:
+            continue
+        velocity, origin = theil_sen(points[:k], seen[:k])
+        dx = centres[frame, 0] - (origin[0] + velocity[0] * frame)
+        dy = centres[frame, 1] - (origin[1] + velocity[1] * frame)
+        stray[row] = np.sqrt(dx * dx + dy * dy) > limit
+    return stray

@@ -201,20 +201,19 @@ def _prediction_errors(paths: Trajectories, earlier: np.ndarray, later: np.ndarr
     if earlier.size == 0:
         return np.zeros(0)
     ends, slot = np.unique(earlier, return_inverse=True)
-    last_in_view, velocity_in_view = np.empty((ends.size, 2)), np.empty((ends.size, 2))
-    last_in_world, velocity_in_world = np.empty((ends.size, 2)), np.empty((ends.size, 2))
-    for row, cluster in enumerate(ends.tolist()):
-        before = paths.of(cluster)
-        tail = before[-min(len(before), 10):]
-        last_in_view[row], velocity_in_view[row] = _steady(tail)
-        if transforms is not None:
-            frames = np.arange(paths.end[cluster] - len(tail) + 1, paths.end[cluster] + 1)
-            last_in_world[row], velocity_in_world[row] = _steady(map_points(np.linalg.inv(transforms[frames]), tail))
+    # a path's last motion runs from the first to the last of its last (up to) 10 points
+    last_frame = paths.end[ends]
+    tail = np.minimum(last_frame - paths.start[ends] + 1, 10)
+    last_row = paths.offsets[ends + 1] - 1
+    last_in_view, velocity_in_view = _steady(paths.points[last_row - tail + 1], paths.points[last_row], tail)
     gap = (paths.start[later] - paths.end[earlier])[:, None]
     arrival = paths.points[paths.offsets[later]]
     error = np.linalg.norm(arrival - (last_in_view[slot] + velocity_in_view[slot] * gap), axis=1)
     if transforms is None:
         return error
+    to_world = np.linalg.inv(transforms[np.r_[last_frame - tail + 1, last_frame]]).reshape(2, ends.size, 3, 3)
+    last_in_world, velocity_in_world = _steady(map_points(to_world[0], paths.points[last_row - tail + 1]),
+                                               map_points(to_world[1], paths.points[last_row]), tail)
     seen = map_points(transforms[paths.start[later]], last_in_world[slot] + velocity_in_world[slot] * gap)
     return np.minimum(error, np.linalg.norm(arrival - seen, axis=1))
 
@@ -245,10 +244,11 @@ def _two_lowest(keys: np.ndarray, costs: np.ndarray, n_keys: int) -> tuple[np.nd
     return lowest, second
 
 
-def _steady(tail: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Last position and mean velocity (per frame) of a path whose last positions are ``tail``
-    (one per frame): it is ``last + velocity * gap`` ``gap`` frames later, moving steadily."""
-    return tail[-1], (tail[-1] - tail[0]) / max(len(tail) - 1, 1)
+def _steady(first: np.ndarray, last: np.ndarray, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Last position and mean velocity (per frame) of paths (N, 2) whose last ``points`` (N,)
+    positions run from ``first`` to ``last`` (one per frame): each is ``last + velocity * gap``
+    ``gap`` frames later, moving steadily."""
+    return last, (last - first) / np.maximum(points - 1, 1)[:, None]
 
 
 def _flag_near(labels: np.ndarray, pattern_edge: np.ndarray, cluster_edge: np.ndarray, flags: np.ndarray,

@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from trap_core.clustering import Track, centre_path, in_rows, track_pieces, usual_size
-from trap_core.robust.motion import straight_line
+from trap_core.robust._kernels import stray_rows
 
 
 def drop_strays(track: Track, window: int, reach: float = 0.5) -> Track:
@@ -33,7 +33,8 @@ def drop_strays(track: Track, window: int, reach: float = 0.5) -> Track:
     window : int
         Frames on either side of a box through which the track's path there is drawn: the
         Theil-Sen line (:func:`trap_core.robust.motion.straight_line`) through the other box
-        centres of those frames, so that a few stray boxes among them do not pull it.
+        centres of those frames, so that a few stray boxes among them do not pull it (one
+        compiled pass over the track, :func:`trap_core.robust._kernels.stray_rows`).
     reach : float
         A box whose centre lies farther from that line than this share of the track's usual
         size (median of the larger box side) strays: at half the size, the box covers less
@@ -47,14 +48,8 @@ def drop_strays(track: Track, window: int, reach: float = 0.5) -> Track:
         return track
     frames = track.frames
     centres = centre_path(track, int(frames[-1]) + 1)
-    limit = reach * usual_size(track)
-    stray = np.zeros(len(track), dtype=bool)
-    for row, frame in enumerate(frames.tolist()):
-        around = np.arange(max(frame - window, 0), min(frame + window, len(centres) - 1) + 1)
-        line = straight_line(centres, around[around != frame])
-        if line is not None:
-            velocity, origin = line
-            stray[row] = np.linalg.norm(centres[frame] - (origin + velocity * frame)) > limit
+    stray = stray_rows(np.ascontiguousarray(centres, dtype=np.float64), frames.astype(np.int64), window,
+                       reach * usual_size(track))
     return in_rows(track, ~stray)
 
 

@@ -1021,8 +1021,10 @@ def _stacked_objects(rows: tuple[int, int], split: int = 60) -> tuple[list, obje
 
 def test_a_pattern_on_another_tracks_object_is_handed_to_that_track_only_where_its_own_is_elsewhere() -> None:
     """One of the lower object's patterns was clustered with the upper object's."""
+    from trap_core.rag import StackedGraphs
     from trap_core.robust import hand_to_owners
-    graphs, result, lower = _stacked_objects((20, 80))
+    frames, result, lower = _stacked_objects((20, 80))
+    graphs = StackedGraphs.of(frames)
     stray = np.flatnonzero(lower)[0]
     labels = np.where(lower, 1, 0)
     labels[stray] = 0

@@ -6,7 +6,7 @@ import numba as nb
 import numpy as np
 
 from trap_core.mining._kernels import _root  # union-find root with path halving, shared with occurrence linking
-from trap_core.rag._kernels import _grow, nodes_box, sets_nodes
+from trap_core.rag._kernels import _grow, nodes_box, stacked_sets_nodes
 
 
 @nb.njit(cache=True, nogil=True, parallel=False)
@@ -223,13 +223,9 @@ def stacked_core_regions(face_sets: np.ndarray, lifetimes: np.ndarray, frames: n
     start = 0
     for k in range(frames.size):
         frame = frames[k]
-        rows = face_sets[start:ends[k]].copy()
-        for i in range(rows.shape[0]):
-            for j in range(rows.shape[1]):
-                if rows[i, j] >= 0:
-                    rows[i, j] += face_base[frame]
         lo, hi = node_offsets[frame], node_offsets[frame + 1]
-        nodes, node_ends = sets_nodes(rows, he_origin, face_half_edges, face_offsets, hi - lo + 1)
+        nodes, node_ends = stacked_sets_nodes(face_sets[start:ends[k]], frame, node_offsets, face_base, face_offsets,
+                                              face_half_edges, he_origin)
         core, top = core_regions(nodes, node_ends, lifetimes[start:ends[k]], backdrop[lo:hi], bbox[lo:hi], share)
         if n_cores + core.size > cores.size:
             cores = _grow(cores, 2 * (n_cores + core.size))

@@ -53,8 +53,9 @@ class ClusterTracks:
         return self.params.working_pixel(*self.graphs[0].frame_size) if robust_lines else 0.0
 
     @cached_property
-    def _stacked(self) -> StackedGraphs:
-        """Every frame's plane graph, stacked once for every cluster's core regions and boxes."""
+    def stacked(self) -> StackedGraphs:
+        """Every frame's plane graph, stacked once for every cluster's core regions and boxes (and
+        the regions that tell which track's object a pattern lies on)."""
         return StackedGraphs.of(self.graphs)
 
     def _build(self, cluster: int) -> Track:
@@ -63,13 +64,13 @@ class ClusterTracks:
         lag = max(1, params.tau // 5)  # frames either side where a region is looked for again
         pixel = self._edge_pixel
         share = params.core_share if robust else 0.0
-        stacked = self._stacked if share else None
+        stacked = self.stacked if share else None
         cores = frame_cores(self.mined, np.flatnonzero(self.labels == cluster), stacked, share) if share else None
         built = build_track(self.mined, self.labels, cluster, 0, stacked, share, pixel, cores)
         if robust and params.still_regions and share > 0:
             built = drop_still_regions(built, cores, stacked, self.transforms, lag, pixel)
         if robust and params.grow:
-            built = grow_boxes(built, self._stacked, self.transforms, lag=lag, max_gap=2 * lag, pixel=pixel)
+            built = grow_boxes(built, self.stacked, self.transforms, lag=lag, max_gap=2 * lag, pixel=pixel)
         if robust and params.fill_gaps:
             built = fill_gaps(built, params.tau)
         return built

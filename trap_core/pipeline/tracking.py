@@ -203,11 +203,12 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
             selected = selection(moving)
     all_labels = np.full(mined.n_st, -1, dtype=np.int64)
     all_labels[clustered] = labels
+    tracks_of = ClusterTracks(mined, all_labels, graphs, transforms, params)
     if robust and params.one_object:
-        all_labels = hand_to_owners(mined, all_labels, selected, graphs)
+        # before any track is built: each is built from the labels it finds
+        tracks_of.labels = all_labels = hand_to_owners(mined, all_labels, selected, tracks_of.stacked)
     clusters = Clusters(summary, selected, moving, labels, mined.st_pattern[clustered], occurrences)
-    tracks = tracks_of_clusters(clusters, ClusterTracks(mined, all_labels, graphs, transforms, params), n_frames,
-                                (width, height), own_frames)
+    tracks = tracks_of_clusters(clusters, tracks_of, n_frames, (width, height), own_frames)
     seconds["clustering"] = time.perf_counter() - after_camera - seconds["distances"]
     return TrackingResult(mined, sub_paths, clustered, hierarchy, summary, selected, tracks, all_labels, seconds)
 

@@ -357,6 +357,46 @@ def sets_nodes(face_sets: np.ndarray, he_origin: np.ndarray, face_half_edges: np
 
 
 @nb.njit(cache=True, nogil=True)
+def stacked_sets_nodes(face_sets: np.ndarray, frame: int, node_offsets: np.ndarray, face_base: np.ndarray,
+                       face_offsets: np.ndarray, face_half_edges: np.ndarray,
+                       he_origin: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`sets_nodes` of occurrences ``face_sets`` (face ids within frame ``frame``, -1
+    padded) in the video's graphs stacked (:class:`trap_core.rag.StackedGraphs`); nodes are
+    numbered within the frame."""
+    rows = face_sets.astype(np.int64)
+    for i in range(rows.shape[0]):
+        for j in range(rows.shape[1]):
+            if rows[i, j] >= 0:
+                rows[i, j] += face_base[frame]
+    return sets_nodes(rows, he_origin, face_half_edges, face_offsets, node_offsets[frame + 1] - node_offsets[frame] + 1)
+
+
+@nb.njit(cache=True, nogil=True)
+def video_sets_nodes(face_sets: np.ndarray, frames: np.ndarray, ends: np.ndarray, node_offsets: np.ndarray,
+                     face_base: np.ndarray, face_offsets: np.ndarray, face_half_edges: np.ndarray,
+                     he_origin: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`stacked_sets_nodes` of the occurrences of each of ``frames``, rows
+    ``ends[k - 1]:ends[k]`` of ``face_sets``, as node ids over the whole video (frame ``t``'s
+    node ``n`` is ``node_offsets[t] + t + n``: each frame has its outside node too), every row's
+    one after the other, and where each row ends."""
+    nodes = np.empty(16 * max(face_sets.shape[0], 1), dtype=np.int64)
+    row_ends = np.empty(face_sets.shape[0], dtype=np.int64)
+    n = 0
+    start = 0
+    for k in range(frames.size):
+        frame = frames[k]
+        frame_nodes, frame_ends = stacked_sets_nodes(face_sets[start:ends[k]], frame, node_offsets, face_base,
+                                                     face_offsets, face_half_edges, he_origin)
+        if n + frame_nodes.size > nodes.size:
+            nodes = _grow(nodes, 2 * (n + frame_nodes.size))
+        nodes[n:n + frame_nodes.size] = frame_nodes + node_offsets[frame] + frame
+        row_ends[start:ends[k]] = frame_ends + n
+        n += frame_nodes.size
+        start = ends[k]
+    return nodes[:n], row_ends
+
+
+@nb.njit(cache=True, nogil=True)
 def outer_lines(bbox: np.ndarray, thickness: np.ndarray, nearest: np.ndarray, nodes: np.ndarray,
                 thin_below: float, around: np.ndarray) -> np.ndarray:
     """Which of ``nodes`` are edge lines outside the others (:meth:`PlaneGraph.outer_lines`):

@@ -619,3 +619,4 @@ def stray_rows(centres: np.ndarray, frames: np.ndarray, window: int, limit: floa
         dy = centres[frame, 1] - (origin[1] + velocity[1] * frame)
         stray[row] = np.sqrt(dx * dx + dy * dy) > limit
     return stray
+

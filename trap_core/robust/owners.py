@@ -25,14 +25,15 @@ import numpy as np
 from scipy import sparse
 
 from trap_core.mining import MiningResult
-from trap_core.rag import PlaneGraph
+from trap_core.rag import StackedGraphs
+from trap_core.rag._kernels import video_sets_nodes
 
 MOST = 0.5        # share of a pattern's frames that must point to the other cluster (more than)
 TWO_PLACES = 0.25  # share of its frames pointing there while its own cluster is in two places (at least)
 
 
 def hand_to_owners(result: MiningResult, labels: np.ndarray, selected: Sequence[int],
-                   graphs: Sequence[PlaneGraph]) -> np.ndarray:
+                   graphs: StackedGraphs) -> np.ndarray:
     """Cluster labels with the selected clusters' patterns that lie on another selected
     cluster's object moved to that cluster.
 
@@ -43,8 +44,8 @@ def hand_to_owners(result: MiningResult, labels: np.ndarray, selected: Sequence[
         Cluster of each spatio-temporal pattern (-1: not clustered).
     selected : sequence of int
         The clusters kept as tracks.
-    graphs : sequence of PlaneGraph
-        The video's plane graphs, frame ``i`` = ``graphs[i]``: the regions each occurrence holds.
+    graphs : StackedGraphs
+        The video's plane graphs, stacked: the regions each occurrence holds.
 
     Returns
     -------
@@ -86,24 +87,21 @@ def hand_to_owners(result: MiningResult, labels: np.ndarray, selected: Sequence[
 
 
 def _shared_regions(result: MiningResult, patterns: np.ndarray,
-                    graphs: Sequence[PlaneGraph]) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, np.ndarray]]:
+                    graphs: StackedGraphs) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, np.ndarray]]:
     """Sightings (one pattern in one frame: index into ``patterns`` and frame) and the pairs of
     distinct sightings that hold a common region (so of one frame)."""
     rows, owner = result.rows_of(patterns)
     frames = result.occ_frame[rows].astype(np.int64)
-    keys, sighting = np.unique(np.column_stack([owner, frames]), axis=0, return_inverse=True)
-    sighting = sighting.reshape(-1)
-    first_node = np.r_[0, np.cumsum([graph.n_nodes + 1 for graph in graphs])]  # nodes of all frames, one id space
+    n_frames = len(graphs)
+    keys, sighting = np.unique(owner.astype(np.int64) * n_frames + frames, return_inverse=True)  # by pattern, frame
     by_frame = np.argsort(frames, kind="stable")
     known, starts = np.unique(frames[by_frame], return_index=True)
-    nodes, holder = [], []
-    for frame, at in zip(known.tolist(), np.split(by_frame, starts[1:])):
-        frame_nodes, ends = graphs[frame].sets_nodes(result.occ_faces[rows[at]])
-        nodes.append(frame_nodes + first_node[frame])
-        holder.append(np.repeat(sighting[at], np.diff(ends, prepend=0)))
-    holders = np.concatenate(holder)
-    incidence = sparse.csr_matrix((np.ones(holders.size), (holders, np.concatenate(nodes))),
-                                  shape=(keys.shape[0], int(first_node[-1])))
+    nodes, ends = video_sets_nodes(result.occ_faces[rows[by_frame]], known, np.r_[starts[1:], by_frame.size],
+                                   graphs.node_offsets, graphs.face_base, graphs.face_offsets, graphs.face_half_edges,
+                                   graphs.he_origin)
+    holders = np.repeat(sighting.reshape(-1)[by_frame], np.diff(ends, prepend=0))
+    incidence = sparse.csr_matrix((np.ones(holders.size), (holders, nodes)),
+                                  shape=(keys.size, int(graphs.node_offsets[-1]) + n_frames))
     pairs = (incidence @ incidence.T).tocoo()
     distinct = pairs.row != pairs.col
-    return keys[:, 0], keys[:, 1], (pairs.row[distinct], pairs.col[distinct])
+    return keys // n_frames, keys % n_frames, (pairs.row[distinct], pairs.col[distinct])

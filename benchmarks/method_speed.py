@@ -59,7 +59,8 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--graphs", action="store_true",
                         help="also time the graph stage of each method (segmentation, plane graphs, the robust "
-                             "method's camera steps) once, and give the whole run's ratio (~1 min a video more)")
+                             "method's camera steps; --graph-repeat runs, the least counts) and give the whole "
+                             "run's ratio (~1 min a video more a run)")
     parser.add_argument("--graph-repeat", type=int, default=1,
                         help="runs of each graph stage, the least counts (~20 s a run at 640x480, 721 frames)")
     parser.add_argument("--cache", type=Path, default=Path.home() / ".cache" / "trap_ros" / "quality")

@@ -6,7 +6,7 @@ from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns
 from trap_core.clustering.selection import ClusterSummary, seen_frames, select_clusters, summarise, twin_clusters
 from trap_core.clustering.tracks import (FrameCores, Track, box_centres, box_containment, box_iou, box_path,
                                         build_track, centre_inside, centre_path, centre_steps, core_regions,
-                                        frame_cores, frame_face_sets, in_rows, one_place, reaches_border, track_pieces,
+                                        frame_cores, in_rows, one_place, reaches_border, track_pieces,
                                         usual_size, with_frames)
 from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
 
@@ -30,7 +30,6 @@ __all__ = [
     "cluster_patterns",
     "core_regions",
     "frame_cores",
-    "frame_face_sets",
     "in_rows",
     "labels_after_merges",
     "lifetime_cut",

@@ -179,18 +179,10 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     return Track(track_id, known, around, score, cluster, points)
 
 
-def frame_face_sets(result: MiningResult, patterns: np.ndarray) -> Iterator[tuple[int, np.ndarray, np.ndarray]]:
-    """Per frame where any of ``patterns`` occurs, in frame order: the frame, the face sets of
-    those occurrences (rows of ``occ_faces``) and the lifetime of each one's pattern (its
-    occurrences in the whole video)."""
-    known, ends, face_sets, lifetimes = _by_frame(result, patterns)
-    for frame, start, stop in zip(known.tolist(), np.r_[0, ends[:-1]].tolist(), ends.tolist()):
-        yield frame, face_sets[start:stop], lifetimes[start:stop]
-
-
 def _by_frame(result: MiningResult, patterns: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The occurrences of ``patterns`` in frame order (stable): the frames they are in, where
-    each frame's end among them, and their face sets and lifetimes (:func:`frame_face_sets`)."""
+    each frame's end among them, their face sets (rows of ``occ_faces``) and the lifetime of
+    each one's pattern (its occurrences in the whole video)."""
     rows, owner = result.rows_of(patterns)
     frames = result.occ_frame[rows]
     order = np.argsort(frames, kind="stable")

@@ -30,11 +30,14 @@ class ClusterTracks:
     """Each cluster's track, built once with the rules in effect that look at one track alone:
     its regions' boxes (core share), still regions left out, boxes grown to their regions, gaps
     filled. ``labels``: cluster of each spatio-temporal pattern of ``mined`` (-1: none);
-    ``transforms``: the camera's, or None where no rule needs them."""
+    ``stacked``: every frame's plane graph, stacked once for every cluster's core regions and
+    boxes (None where no rule reads them: the paper's method); ``transforms``: the camera's, or
+    None where no rule needs them."""
 
     mined: MiningResult
     labels: np.ndarray
     graphs: Sequence[PlaneGraph]
+    stacked: StackedGraphs | None
     transforms: np.ndarray | None
     params: TrapParams
     _built: dict[int, Track] = field(default_factory=dict)
@@ -51,12 +54,6 @@ class ClusterTracks:
         any region); the same for every cluster's track."""
         robust_lines = self.params.method == "robust" and self.params.edge_lines
         return self.params.working_pixel(*self.graphs[0].frame_size) if robust_lines else 0.0
-
-    @cached_property
-    def stacked(self) -> StackedGraphs:
-        """Every frame's plane graph, stacked once for every cluster's core regions and boxes (and
-        the regions that tell which track's object a pattern lies on)."""
-        return StackedGraphs.of(self.graphs)
 
     def _build(self, cluster: int) -> Track:
         params = self.params

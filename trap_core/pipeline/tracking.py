@@ -15,7 +15,7 @@ from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.pipeline.track_rules import Clusters, ClusterTracks, tracks_of_clusters
-from trap_core.rag import PlaneGraph
+from trap_core.rag import PlaneGraph, StackedGraphs
 from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, alone_at_ends, border_contacts,
                               border_share, camera_paths, camera_transforms, cluster_world_speed, hand_to_owners,
                               held_share, moves_in_hops, pattern_sizes, rejoin_fragments, shadowed, split_mixed,
@@ -180,6 +180,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                 moving |= seen_without_backdrop(moving)
                 sub_paths = _with_paths(sub_paths, apart, free_paths)
                 summary = summarise(labels, sub_paths, occurrences, n_frames)
+    stacked = StackedGraphs.of(graphs) if robust else None  # every frame's regions, for the rules that read them
     own_frames = robust and params.own_frames
     seen = seen_frames(mined, clustered, labels) if own_frames else None
 
@@ -194,7 +195,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
             tested.update(fresh)
             paths = summary.paths.dense(np.array(fresh), np.arange(n_frames))
             still = [c for c, path in zip(fresh, paths)
-                     if stays_with_scene(mined, clustered[labels == c], path, graphs, transforms, params.core_share,
+                     if stays_with_scene(mined, clustered[labels == c], path, stacked, transforms, params.core_share,
                                          max(1, params.tau // 5))]
             if not still:
                 break
@@ -203,12 +204,11 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
             selected = selection(moving)
     all_labels = np.full(mined.n_st, -1, dtype=np.int64)
     all_labels[clustered] = labels
-    tracks_of = ClusterTracks(mined, all_labels, graphs, transforms, params)
     if robust and params.one_object:
-        # before any track is built: each is built from the labels it finds
-        tracks_of.labels = all_labels = hand_to_owners(mined, all_labels, selected, tracks_of.stacked)
+        all_labels = hand_to_owners(mined, all_labels, selected, stacked)
     clusters = Clusters(summary, selected, moving, labels, mined.st_pattern[clustered], occurrences)
-    tracks = tracks_of_clusters(clusters, tracks_of, n_frames, (width, height), own_frames)
+    tracks = tracks_of_clusters(clusters, ClusterTracks(mined, all_labels, graphs, stacked, transforms, params),
+                                n_frames, (width, height), own_frames)
     seconds["clustering"] = time.perf_counter() - after_camera - seconds["distances"]
     return TrackingResult(mined, sub_paths, clustered, hierarchy, summary, selected, tracks, all_labels, seconds)
 

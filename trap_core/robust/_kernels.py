@@ -620,3 +620,40 @@ def stray_rows(centres: np.ndarray, frames: np.ndarray, window: int, limit: floa
         stray[row] = np.sqrt(dx * dx + dy * dy) > limit
     return stray
 
+
+
+@nb.njit(cache=True, nogil=True)
+def anchors_found_again(node_offsets: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
+                        frames: np.ndarray, top: np.ndarray, top_ends: np.ndarray, positions: np.ndarray,
+                        cameras: np.ndarray, lag: int, area_factor: float) -> tuple[int, int]:
+    """How many of a cluster's anchors go with it and how many stay with the scene
+    (:func:`trap_core.robust.stays_with_scene`): in each of ``frames`` that is a multiple of
+    ``lag`` and where its mean path ``positions`` (n_frames, 2; NaN where it has none) is known,
+    its anchors (``top[top_ends[k - 1]:top_ends[k]]``, :class:`~trap_core.clustering.FrameCores`)
+    are looked for again ``lag`` frames before and after (where the path is known too): found
+    at most half as far from where the cluster's motion puts them as from where the camera's
+    (``cameras[k, side]``) does, they go with it; the other way round, they stay. The video's
+    regions are stacked as for :func:`grow_boxes`."""
+    n_frames = node_offsets.size - 1
+    with_cluster = with_scene = 0
+    top_start = 0
+    for k in range(frames.size):
+        frame = frames[k]
+        anchor = top[top_start:top_ends[k]]
+        top_start = top_ends[k]
+        if frame % lag != 0 or np.isnan(positions[frame, 0]) or np.isnan(positions[frame, 1]):
+            continue
+        lo, hi = node_offsets[frame], node_offsets[frame + 1]
+        for side, other in enumerate((frame - lag, frame + lag)):
+            if not 0 <= other < n_frames or np.isnan(positions[other, 0]) or np.isnan(positions[other, 1]):
+                continue
+            olo, ohi = node_offsets[other], node_offsets[other + 1]
+            near_cluster, near_scene = found_again(centroid[lo:hi], area[lo:hi], label[lo:hi], centroid[olo:ohi],
+                                                   area[olo:ohi], label[olo:ohi], anchor,
+                                                   positions[other] - positions[frame], cameras[k, side], area_factor)
+            for a in range(anchor.size):
+                if 2 * near_cluster[a] < near_scene[a]:
+                    with_cluster += 1
+                if 2 * near_scene[a] < near_cluster[a]:
+                    with_scene += 1
+    return with_cluster, with_scene

@@ -18,18 +18,18 @@ a frame on every benchmark scene (:mod:`trap_core.robust.image_steps`).
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
-
 import numpy as np
 
-from trap_core.clustering import core_regions, frame_face_sets
+from trap_core.clustering import frame_cores
 from trap_core.mining import MiningResult
-from trap_core.rag import PlaneGraph
-from trap_core.robust.still import found_again
+from trap_core.rag import StackedGraphs
+from trap_core.robust._kernels import anchors_found_again
+from trap_core.robust.camera import camera_moves
+from trap_core.robust.still import AREA_FACTOR
 
 
 def stays_with_scene(result: MiningResult, patterns: np.ndarray, positions: np.ndarray,
-                     graphs: Sequence[PlaneGraph], transforms: np.ndarray, share: float, lag: int) -> bool:
+                     graphs: StackedGraphs, transforms: np.ndarray, share: float, lag: int) -> bool:
     """Whether the cluster of ``patterns`` (spatio-temporal pattern ids of ``result``) is background:
     its anchors, ``lag`` frames before and after, stay with the scene more often than they go with it.
 
@@ -40,8 +40,8 @@ def stays_with_scene(result: MiningResult, patterns: np.ndarray, positions: np.n
         The cluster's spatio-temporal patterns.
     positions : (n_frames, 2) array
         The cluster's mean path (NaN in frames it does not cover).
-    graphs : sequence of PlaneGraph
-        Plane graph of every frame of the video.
+    graphs : StackedGraphs
+        Plane graph of every frame of the video, stacked.
     transforms : (n_frames, 3, 3) array
         Camera motion, frame 0 to frame ``t`` (:func:`trap_core.robust.camera_transforms`).
     share : float
@@ -49,17 +49,16 @@ def stays_with_scene(result: MiningResult, patterns: np.ndarray, positions: np.n
     lag : int
         Frames before and after where an anchor is looked for again; it is looked at in one frame
         of every ``lag`` (frames closer than that tell nearly the same, at ``lag`` times the cost).
+
+    Returns
+    -------
+    bool
+        Read in one compiled pass (:func:`trap_core.robust._kernels.anchors_found_again`) from
+        the cluster's core regions in every frame (:func:`trap_core.clustering.frame_cores`).
     """
-    with_cluster = with_scene = 0
-    for frame, face_sets, lifetimes in frame_face_sets(result, patterns):
-        if frame % lag or np.isnan(positions[frame]).any():  # frames closer than lag tell nearly the same
-            continue
-        anchor = core_regions(graphs[frame], face_sets, share, lifetimes)[1]
-        for other in (frame - lag, frame + lag):
-            if not 0 <= other < len(graphs) or np.isnan(positions[other]).any():
-                continue
-            near_cluster, near_scene = found_again(graphs, transforms, frame, other, anchor,
-                                                   positions[other] - positions[frame])
-            with_cluster += int((2 * near_cluster < near_scene).sum())
-            with_scene += int((2 * near_scene < near_cluster).sum())
+    cores = frame_cores(result, patterns, graphs, share)
+    frames = cores.frames.astype(np.int64)
+    with_cluster, with_scene = anchors_found_again(
+        graphs.node_offsets, graphs.centroid, graphs.area, graphs.label, frames, cores.top, cores.top_ends,
+        np.asarray(positions, dtype=np.float64), camera_moves(transforms, frames, lag), lag, AREA_FACTOR)
     return with_scene > with_cluster

@@ -166,7 +166,7 @@ def found_again(centroid: np.ndarray, area: np.ndarray, label: np.ndarray, other
     """Per region of ``regions``: the distance from where ``shift`` (a track's motion to the other
     frame) puts it, and from where the camera's motion ``camera`` (3x3) puts it, to the nearest
     region of the other frame of its label and an area within ``area_factor`` of its own; inf
-    for both where there is none (:func:`trap_core.robust.still.found_again`)."""
+    for both where there is none (:func:`still_core_boxes`, :func:`anchors_found_again`)."""
     with_track = np.full(regions.size, np.inf)
     with_camera = np.full(regions.size, np.inf)
     for k in range(regions.size):
@@ -619,7 +619,6 @@ def stray_rows(centres: np.ndarray, frames: np.ndarray, window: int, limit: floa
         dy = centres[frame, 1] - (origin[1] + velocity[1] * frame)
         stray[row] = np.sqrt(dx * dx + dy * dy) > limit
     return stray
-
 
 
 @nb.njit(cache=True, nogil=True)

@@ -18,14 +18,12 @@ moves slowly relative to the background, where the two predictions are close, ke
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
 
 import numpy as np
 
 from trap_core.clustering import FrameCores, Track
-from trap_core.rag import PlaneGraph, StackedGraphs
+from trap_core.rag import StackedGraphs
 from trap_core.rag.plane_graph import edge_line_limits
-from trap_core.robust._kernels import found_again as _found_again
 from trap_core.robust._kernels import still_core_boxes as _still_core_boxes
 from trap_core.robust.camera import camera_moves
 
@@ -67,14 +65,3 @@ def drop_still_regions(track: Track, cores: FrameCores, graphs: StackedGraphs, t
                       track.points.astype(float), cameras, boxes, lag, AREA_FACTOR, *edge_line_limits(pixel))
     return dataclasses.replace(track, boxes=boxes)
 
-
-def found_again(graphs: Sequence[PlaneGraph], transforms: np.ndarray, frame: int, other: int, regions: np.ndarray,
-                shift: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Per region of ``regions`` (nodes of ``graphs[frame]``): the distance from where ``shift``
-    (a track's motion from ``frame`` to ``other``) puts it, and from where the camera's motion
-    (``transforms``) puts it, to the nearest region of ``graphs[other]`` that looks like it (same
-    label, area within ``AREA_FACTOR``); inf for both where none does."""
-    here, there = graphs[frame], graphs[other]
-    return _found_again(here.centroid, here.area, here.label, there.centroid, there.area, there.label,
-                        np.asarray(regions, dtype=np.int64), np.asarray(shift, dtype=np.float64),
-                        transforms[other] @ np.linalg.inv(transforms[frame]), AREA_FACTOR)

@@ -25,6 +25,7 @@ import quality  # noqa: E402  (the benchmark sets and their graph cache)
 
 from trap_core.clustering import observed_paths  # noqa: E402
 from trap_core.pipeline import PatternMiner, TrapParams  # noqa: E402
+from trap_core.rag import StackedGraphs  # noqa: E402
 from trap_core.robust import camera_paths, camera_transforms, without_backdrop  # noqa: E402
 from trap_core.synthetic import SceneConfig  # noqa: E402
 from trap_core.synthetic.scene import build_world  # noqa: E402
@@ -61,7 +62,8 @@ def main() -> None:
             pan = build_world(SceneConfig(**scene)).camera.astype(float)
             cells = []
             with_backdrop = observed_paths(mined)
-            read = camera_paths(graphs, observed_paths(without_backdrop(mined, graphs)), params.eps)
+            stacked = StackedGraphs.of(graphs)
+            read = camera_paths(stacked, observed_paths(without_backdrop(mined, stacked)), params.eps)
             steps = np.stack([graph.camera_step for graph in graphs])
             for paths, image_steps in ((with_backdrop, None), (read, None), (read, steps)):
                 errors = _errors(camera_transforms(paths, len(graphs), image_steps), pan)

@@ -112,6 +112,7 @@ def test_objects_over_a_smooth_background_are_tracked_with_the_camera_read_from_
     from trap_core.clustering import observed_paths
     from trap_core.evaluation import boxes_by_frame, match_objects
     from trap_core.pipeline import PatternMiner, TrapParams, synthetic_graphs, track
+    from trap_core.rag import StackedGraphs
     from trap_core.robust import camera_paths, without_backdrop
     from trap_core.synthetic import SceneConfig
     from trap_core.synthetic.scene import build_world
@@ -123,7 +124,8 @@ def test_objects_over_a_smooth_background_are_tracked_with_the_camera_read_from_
     for graph in graphs:
         miner.add(graph)
     mined = miner.finish()
-    paths = camera_paths(graphs, observed_paths(without_backdrop(mined, graphs)), params.eps)
+    stacked = StackedGraphs.of(graphs)
+    paths = camera_paths(stacked, observed_paths(without_backdrop(mined, stacked)), params.eps)
     pan = build_world(config).camera.astype(float)
 
     def errors(transforms: np.ndarray) -> np.ndarray:

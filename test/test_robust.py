@@ -112,10 +112,12 @@ def test_the_camera_motion_over_a_backdrop_is_read_without_it() -> None:
     it): read from positions that average the backdrop in, the camera's motion over 8 frames is
     off the true pan by a fifth of a pixel a frame or more half the time; with the backdrop left
     out of the positions, by less than a tenth anywhere."""
+    from trap_core.rag import StackedGraphs
     from trap_core.robust import camera_paths, without_backdrop
     graphs, mined, observed, errors = _pan_over("coffee", seed=11)
     assert max(g.area.max() / (640 * 480) for g in graphs) > 0.5  # the scene has a backdrop
-    assert errors(camera_paths(graphs, observed_paths(without_backdrop(mined, graphs)), 40.0)).max() < 0.1
+    stacked = StackedGraphs.of(graphs)
+    assert errors(camera_paths(stacked, observed_paths(without_backdrop(mined, stacked)), 40.0)).max() < 0.1
     assert np.median(errors(observed)) > 0.2
 
 
@@ -124,10 +126,12 @@ def test_the_camera_motion_over_a_scene_of_few_patterns_is_read_from_its_regions
     three objects hold most frequent patterns, and the motion read from the patterns follows
     them (4 px a frame off the true pan, median over 8 frames; 3 without the backdrop). With
     the regions matched from frame to frame, the background outvotes them: 0 px half the time."""
+    from trap_core.rag import StackedGraphs
     from trap_core.robust import camera_paths, without_backdrop
     graphs, mined, observed, errors = _pan_over("chelsea", seed=22)
     assert np.median(errors(observed)) > 2.0
-    assert np.median(errors(camera_paths(graphs, observed_paths(without_backdrop(mined, graphs)), 40.0))) < 0.1
+    stacked = StackedGraphs.of(graphs)
+    assert np.median(errors(camera_paths(stacked, observed_paths(without_backdrop(mined, stacked)), 40.0))) < 0.1
 
 
 def test_patterns_bunched_in_one_frame_give_no_degenerate_camera_motion() -> None:
@@ -961,6 +965,7 @@ def test_a_pattern_holding_the_backdrop_is_sized_without_it_and_its_pull_on_aver
     so that they would never be apart from anything; placed without it, each is its own size
     plus the backdrop's pull, and the two are apart on average but not in every frame."""
     from trap_core.mining import MiningParams, mine
+    from trap_core.rag import StackedGraphs
     from trap_core.robust import pattern_sizes, without_backdrop
     graphs = []
     for t in range(30):
@@ -972,7 +977,7 @@ def test_a_pattern_holding_the_backdrop_is_sized_without_it_and_its_pull_on_aver
     assert all(graph.backdrop.sum() == 1 for graph in graphs)
     mined = mine(graphs, MiningParams(eps=40.0, tau=5, freq_st_min=10, max_faces=3, linking="assignment"))
     patterns = np.arange(mined.n_st)
-    free = without_backdrop(mined, graphs)
+    free = without_backdrop(mined, StackedGraphs.of(graphs))
     in_every_frame, on_average = pattern_sizes(mined, patterns), pattern_sizes(mined, patterns, free)
     np.testing.assert_allclose(in_every_frame, np.hypot(320, 200))
     pull = [np.linalg.norm(mined.occ_position[mined.st(p)] - free.occ_position[mined.st(p)], axis=1).mean()
@@ -2111,6 +2116,7 @@ def test_discs_on_a_cat_cut_by_its_backdrop_only_are_tracks() -> None:
     are tracks (none were before), clustered again without the backdrop (with it, their paths
     are pulled to the middle of the view and one cluster held all three discs)."""
     from trap_core.evaluation import match_objects
+    from trap_core.rag import StackedGraphs
     from trap_core.robust import CUT_SHARE, border_share, without_backdrop
     params = TrapParams(segmentation="felzenszwalb")
     graphs, truth = synthetic_graphs(SceneConfig(frames=150, seed=15, shape="disc", identical=True,
@@ -2120,7 +2126,7 @@ def test_discs_on_a_cat_cut_by_its_backdrop_only_are_tracks() -> None:
     labels = result.labels[patterns]
     with_backdrop = border_share(result.mining, patterns, labels, 640, 480)[result.selected]
     assert np.all(with_backdrop > CUT_SHARE)  # the rule made them tracks
-    free = border_share(without_backdrop(result.mining, graphs), patterns, labels, 640, 480)[result.selected]
+    free = border_share(without_backdrop(result.mining, StackedGraphs.of(graphs)), patterns, labels, 640, 480)[result.selected]
     assert np.all(free <= CUT_SHARE)
     matched = match_objects([boxes_by_frame(t) for t in result.tracks], truth)
     assert len(result.tracks) == 3 and all(p >= 0.9 and r >= 0.75 for _, p, r in matched)

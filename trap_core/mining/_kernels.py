@@ -394,9 +394,16 @@ def assign_occurrences(group_start, frame, position, extent, eps, tau, reach):
     eps2 = eps * eps
     taken_at = np.full(count, -1, dtype=np.int64)  # the step in which each chain last took an occurrence
     step = 0
+    longest = 0
+    for g in range(group_start.size - 1):
+        longest = max(longest, group_start[g + 1] - group_start[g])
+    active = np.empty(longest, dtype=np.int64)  # chains of the current pattern still waiting
+    costs = np.empty(64)  # candidate pairs of one frame: squared distance, occurrence, chain
+    occ = np.empty(64, dtype=np.int64)
+    chn = np.empty(64, dtype=np.int64)
+    first = np.zeros(1, dtype=np.int64)  # the order of a single pair
     for g in range(group_start.size - 1):
         lo, hi = group_start[g], group_start[g + 1]
-        active = np.empty(hi - lo, dtype=np.int64)
         n_active = 0
         i = lo
         while i < hi:
@@ -411,9 +418,10 @@ def assign_occurrences(group_start, frame, position, extent, eps, tau, reach):
                     keep += 1
             n_active = keep
             n_pairs = 0
-            costs = np.empty((j - i) * max(n_active, 1))
-            occ = np.empty_like(costs, dtype=np.int64)
-            chn = np.empty_like(costs, dtype=np.int64)
+            if (j - i) * n_active > costs.size:
+                costs = np.empty(2 * (j - i) * n_active)
+                occ = np.empty(costs.size, dtype=np.int64)
+                chn = np.empty(costs.size, dtype=np.int64)
             for k in range(i, j):
                 for a in range(n_active):
                     c = active[a]
@@ -427,7 +435,7 @@ def assign_occurrences(group_start, frame, position, extent, eps, tau, reach):
                         occ[n_pairs] = k
                         chn[n_pairs] = c
                         n_pairs += 1
-            order = np.argsort(costs[:n_pairs])
+            order = np.argsort(costs[:n_pairs]) if n_pairs > 1 else first[:n_pairs]
             for p in order:
                 k, c = occ[p], chn[p]
                 if chain[k] >= 0 or taken_at[c] == step:

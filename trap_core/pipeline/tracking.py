@@ -68,11 +68,12 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     cut_short = mined.freq_st() < miner.freq_st_min  # kept only as the video's ends cut them (robust)
     transforms = None
     free, free_observed = mined, observed
+    stacked = StackedGraphs.of(graphs) if robust else None  # every frame's regions, for the rules that read them
     if params.reads_camera:
-        free = without_backdrop(mined, graphs)  # where the backdrop is, occurrences placed and boxed without it
+        free = without_backdrop(mined, stacked)  # where the backdrop is, occurrences placed and boxed without it
         free_observed = observed if free is mined else observed_paths(free)
         image_steps = np.stack([graph.camera_step for graph in graphs]) if params.reads_image_steps else None
-        transforms = camera_transforms(camera_paths(graphs, free_observed, params.eps), n_frames, image_steps)
+        transforms = camera_transforms(camera_paths(stacked, free_observed, params.eps), n_frames, image_steps)
     still_below = params.min_speed * width  # px per frame
     if robust and params.min_speed > 0:
         hop = params.eps / 4  # a world step this long (a texture's spacing) is a hop
@@ -180,7 +181,6 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                 moving |= seen_without_backdrop(moving)
                 sub_paths = _with_paths(sub_paths, apart, free_paths)
                 summary = summarise(labels, sub_paths, occurrences, n_frames)
-    stacked = StackedGraphs.of(graphs) if robust else None  # every frame's regions, for the rules that read them
     own_frames = robust and params.own_frames
     seen = seen_frames(mined, clustered, labels) if own_frames else None
 

@@ -1,10 +1,13 @@
-"""Compiled kernels (numba, ``nogil``) of the grown track boxes (which regions move with a track)
-and of the camera's motion (which regions of two consecutive frames are one)."""
+"""Compiled kernels (numba, ``nogil``) of the robust method's rules: the grown track boxes (which
+regions move with a track), the camera's motion (which regions of two consecutive frames are
+one), and the passes that read every frame's regions or many patterns' paths in one call. Each
+kernel's docstring names the rule it serves."""
 from __future__ import annotations
 
 import numba as nb
 import numpy as np
 
+from trap_core.mining._kernels import occurrence_geometry
 from trap_core.rag._kernels import nodes_box
 
 # An object's part keeps its area from frame to frame; a background region the object passes
@@ -235,44 +238,77 @@ def still_core_boxes(node_offsets: np.ndarray, bbox: np.ndarray, centroid: np.nd
 
 
 @nb.njit(cache=True, nogil=True)
-def matched_regions(centroid: np.ndarray, area: np.ndarray, label: np.ndarray, next_centroid: np.ndarray,
-                    next_area: np.ndarray, next_label: np.ndarray, reach: float,
-                    max_ratio: float) -> tuple[np.ndarray, np.ndarray]:
-    """Pairs (rows of the first frame's regions, rows of the next's) of regions of one label,
-    areas within ``max_ratio`` of each other, each the other's nearest such within ``reach`` px."""
-    n, m = centroid.shape[0], next_centroid.shape[0]
-    best_next = np.full(n, -1, dtype=np.int64)
-    best_next_distance = np.full(n, np.inf)
-    best_here = np.full(m, -1, dtype=np.int64)
-    best_here_distance = np.full(m, np.inf)
-    for i in range(n):
-        for j in range(m):
-            if label[i] != next_label[j] or area[i] > max_ratio * next_area[j] or next_area[j] > max_ratio * area[i]:
+def region_steps(node_offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray,
+                 label: np.ndarray, backdrop: np.ndarray, by_place: np.ndarray, reach: float,
+                 max_ratio: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Regions matched between consecutive frames (:func:`trap_core.robust.camera_paths`): of the
+    regions that are not the ``backdrop`` and do not reach the frame's edge, pairs of one label,
+    areas within ``max_ratio`` of each other, each the other's nearest such within ``reach`` px
+    (the lower row on a tie). The video's regions are stacked as for :func:`grow_boxes`; each
+    region searches the next frame's of its label by place (``by_place``), within ``reach`` in x.
+    Returns the pairs' rows in the stacked arrays, and the first one's frame, by frame then row."""
+    n_frames = node_offsets.size - 1
+    inner = np.zeros(area.size, dtype=np.bool_)
+    for t in range(n_frames):
+        lo, hi = node_offsets[t], node_offsets[t + 1]
+        if hi == lo:
+            continue
+        width, height = bbox[lo:hi, 2].max() + 1, bbox[lo:hi, 3].max() + 1
+        for r in range(lo, hi):
+            inner[r] = (not backdrop[r] and bbox[r, 0] > 0 and bbox[r, 1] > 0 and bbox[r, 2] + 1 < width
+                        and bbox[r, 3] + 1 < height)
+    first, second, frames = [], [], []
+    placed = np.empty(area.size, dtype=np.int64)  # the next frame's inner regions, by label then x
+    best_next = np.empty(area.size, dtype=np.int64)
+    best_next_distance = np.empty(area.size)
+    best_here = np.empty(area.size, dtype=np.int64)
+    best_here_distance = np.empty(area.size)
+    for t in range(n_frames - 1):
+        lo, hi, nlo, nhi = node_offsets[t], node_offsets[t + 1], node_offsets[t + 1], node_offsets[t + 2]
+        n_placed = 0
+        for k in range(nhi - nlo):
+            r = nlo + by_place[nlo + k]
+            if inner[r]:
+                placed[n_placed] = r
+                n_placed += 1
+        best_next[lo:hi] = -1
+        best_next_distance[lo:hi] = np.inf
+        best_here[nlo:nhi] = -1
+        best_here_distance[nlo:nhi] = np.inf
+        for i in range(lo, hi):
+            if not inner[i]:
                 continue
-            dx = centroid[i, 0] - next_centroid[j, 0]
-            dy = centroid[i, 1] - next_centroid[j, 1]
-            distance = np.sqrt(dx * dx + dy * dy)
-            if distance > reach:
-                continue
-            if distance < best_next_distance[i]:
-                best_next_distance[i] = distance
-                best_next[i] = j
-            if distance < best_here_distance[j]:
-                best_here_distance[j] = distance
-                best_here[j] = i
-    count = 0
-    for i in range(n):
-        if best_next[i] >= 0 and best_here[best_next[i]] == i:
-            count += 1
-    rows = np.empty(count, dtype=np.int64)
-    next_rows = np.empty(count, dtype=np.int64)
-    k = 0
-    for i in range(n):
-        if best_next[i] >= 0 and best_here[best_next[i]] == i:
-            rows[k] = i
-            next_rows[k] = best_next[i]
-            k += 1
-    return rows, next_rows
+            x, y = np.float64(centroid[i, 0]), np.float64(centroid[i, 1])
+            low, high = 0, n_placed  # the first placed region of this label and x - reach or more
+            while low < high:
+                mid = (low + high) // 2
+                other = placed[mid]
+                if label[other] < label[i] or (label[other] == label[i] and centroid[other, 0] < x - reach):
+                    low = mid + 1
+                else:
+                    high = mid
+            for k in range(low, n_placed):
+                j = placed[k]
+                if label[j] != label[i] or centroid[j, 0] > x + reach:
+                    break
+                if area[i] > max_ratio * area[j] or area[j] > max_ratio * area[i]:
+                    continue
+                dx, dy = x - np.float64(centroid[j, 0]), y - np.float64(centroid[j, 1])
+                distance = np.sqrt(dx * dx + dy * dy)
+                if distance > reach:
+                    continue
+                if distance < best_next_distance[i] or (distance == best_next_distance[i] and j < best_next[i]):
+                    best_next_distance[i] = distance
+                    best_next[i] = j
+                if distance < best_here_distance[j]:  # rows come in order: the lower one is kept on a tie
+                    best_here_distance[j] = distance
+                    best_here[j] = i
+        for i in range(lo, hi):
+            if best_next[i] >= 0 and best_here[best_next[i]] == i:
+                first.append(i)
+                second.append(best_next[i])
+                frames.append(t)
+    return np.array(first, dtype=np.int64), np.array(second, dtype=np.int64), np.array(frames, dtype=np.int64)
 
 
 @nb.njit(cache=True, nogil=True)
@@ -656,3 +692,87 @@ def anchors_found_again(node_offsets: np.ndarray, centroid: np.ndarray, area: np
                 if 2 * near_scene[a] < near_cluster[a]:
                     with_scene += 1
     return with_cluster, with_scene
+
+
+@nb.njit(cache=True, nogil=True)
+def _grouped(keys: np.ndarray, n_keys: int) -> tuple[np.ndarray, np.ndarray]:
+    """The entries of ``keys`` (each in ``0..n_keys-1``) grouped by key, in order within a key,
+    and where each key's group starts (CSR offsets, ``n_keys + 1`` of them)."""
+    offsets = np.zeros(n_keys + 1, dtype=np.int64)
+    for key in keys:
+        offsets[key + 1] += 1
+    for key in range(n_keys):
+        offsets[key + 1] += offsets[key]
+    cursor = offsets[:-1].copy()
+    entries = np.empty(keys.size, dtype=np.int64)
+    for e in range(keys.size):
+        entries[cursor[keys[e]]] = e
+        cursor[keys[e]] += 1
+    return entries, offsets
+
+
+@nb.njit(cache=True, nogil=True)
+def shared_support(holders: np.ndarray, nodes: np.ndarray, n_nodes: int, cluster: np.ndarray, weight: np.ndarray,
+                   n_clusters: int) -> tuple[np.ndarray, np.ndarray]:
+    """For each sighting (a pattern in one frame, of cluster ``cluster``), the ``weight`` of the
+    other sightings that hold a region with it, summed by their cluster (sightings, clusters),
+    and how many of those are of its own cluster (:func:`trap_core.robust.hand_to_owners`).
+    ``holders[e]`` holds region ``nodes[e]`` (ids below ``n_nodes``), a pair may repeat."""
+    n = cluster.size
+    by_holder, holder_offsets = _grouped(holders, n)
+    by_node, node_offsets = _grouped(nodes, n_nodes)
+    support = np.zeros((n, n_clusters))
+    own_sharers = np.zeros(n, dtype=np.int64)
+    counted_for = np.full(n, -1, dtype=np.int64)  # the sighting each other one was last counted for
+    for s in range(n):
+        counted_for[s] = s
+        for e in by_holder[holder_offsets[s]:holder_offsets[s + 1]]:
+            node = nodes[e]
+            for f in by_node[node_offsets[node]:node_offsets[node + 1]]:
+                other = holders[f]
+                if counted_for[other] != s:
+                    counted_for[other] = s
+                    support[s, cluster[other]] += weight[other]
+                    if cluster[other] == cluster[s]:
+                        own_sharers[s] += 1
+    return support, own_sharers
+
+
+@nb.njit(cache=True, nogil=True)
+def backdrop_free_geometry(occ_frame: np.ndarray, occ_faces: np.ndarray, node_offsets: np.ndarray,
+                           face_base: np.ndarray, face_offsets: np.ndarray, face_half_edges: np.ndarray,
+                           he_origin: np.ndarray, centroid: np.ndarray, bbox: np.ndarray, backdrop: np.ndarray,
+                           position: np.ndarray, box: np.ndarray) -> None:
+    """:func:`trap_core.robust.without_backdrop` in one pass: each occurrence (its frame and face
+    set, faces numbered within the frame) of a frame with a backdrop that holds other regions
+    too gets, in ``position`` and ``box``, the :func:`~trap_core.mining._kernels.occurrence_geometry`
+    of those others. The video's regions are stacked as for :func:`grow_boxes`."""
+    n_frames = node_offsets.size - 1
+    count = np.zeros(n_frames + 1, dtype=np.int64)
+    for frame in occ_frame:
+        count[frame + 1] += 1
+    for t in range(n_frames):
+        count[t + 1] += count[t]
+    by_frame = np.empty(occ_frame.size, dtype=np.int64)
+    cursor = count[:-1].copy()
+    for r in range(occ_frame.size):
+        by_frame[cursor[occ_frame[r]]] = r
+        cursor[occ_frame[r]] += 1
+    for t in range(n_frames):
+        lo, hi = node_offsets[t], node_offsets[t + 1]
+        rows = by_frame[count[t]:count[t + 1]]
+        if rows.size == 0 or not backdrop[lo:hi].any():
+            continue
+        sets = np.full((rows.size, occ_faces.shape[1]), -1, dtype=np.int64)
+        for k in range(rows.size):
+            for j in range(occ_faces.shape[1]):
+                if occ_faces[rows[k], j] >= 0:
+                    sets[k, j] = occ_faces[rows[k], j] + face_base[t]
+        placed, boxed, _ = occurrence_geometry(sets, he_origin, face_half_edges, face_offsets, centroid[lo:hi],
+                                               bbox[lo:hi], backdrop[lo:hi])
+        for k in range(rows.size):
+            if not np.isnan(placed[k, 0]):
+                for c in range(2):
+                    position[rows[k], c] = placed[k, c]
+                for c in range(4):
+                    box[rows[k], c] = boxed[k, c]

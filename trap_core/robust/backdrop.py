@@ -16,44 +16,33 @@ those must not make second tracks). Such clusters are clustered again on their o
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
 
 import numpy as np
 
 from trap_core.clustering import ClusterSummary
 from trap_core.mining import MiningResult
-from trap_core.mining._kernels import occurrence_geometry
-from trap_core.rag import PlaneGraph
-from trap_core.robust._kernels import near_paths
+from trap_core.rag import StackedGraphs
+from trap_core.robust._kernels import backdrop_free_geometry, near_paths
 
 HELD_SHARE = 0.5  # a cluster with more of its occurrences holding the backdrop may be an object seen only through it
 SHADOWED_SHARE = 0.5  # a cluster seen again without the backdrop is taken where at most this share of it is shadowed
 
 
-def without_backdrop(result: MiningResult, graphs: Sequence[PlaneGraph]) -> MiningResult:
+def without_backdrop(result: MiningResult, graphs: StackedGraphs) -> MiningResult:
     """``result`` with each occurrence that holds the backdrop (:attr:`PlaneGraph.backdrop`) and
     other regions placed at the mean barycentre of the others and boxed around them
-    (``result`` itself where no frame has a backdrop). ``graphs[i]`` is frame ``i``.
+    (``result`` itself where no frame has a backdrop). ``graphs``: the video's, stacked.
 
     The backdrop's barycentre stays near the middle of the view and its box is the frame's,
     wherever the camera goes: where it is in, an occurrence's position moves partly with the
     view and its box reaches the image's edge whatever the rest does."""
-    backdrops = [graph.backdrop for graph in graphs]
-    if not any(backdrop.any() for backdrop in backdrops):
+    if not graphs.backdrop.any():
         return result
     position = result.occ_position.copy()
     box = result.occ_box.copy()
-    order = np.argsort(result.occ_frame, kind="stable")
-    bounds = np.searchsorted(result.occ_frame[order], np.arange(len(graphs) + 1))
-    for frame, (graph, backdrop) in enumerate(zip(graphs, backdrops)):
-        rows = order[bounds[frame]:bounds[frame + 1]]
-        if not backdrop.any() or rows.size == 0:
-            continue
-        placed, boxed, _ = occurrence_geometry(result.occ_faces[rows], graph.he_origin, graph.face_half_edges,
-                                               graph.face_offsets, graph.centroid, graph.bbox, backdrop)
-        found = ~np.isnan(placed[:, 0])
-        position[rows[found]] = placed[found]
-        box[rows[found]] = boxed[found]
+    backdrop_free_geometry(result.occ_frame, result.occ_faces, graphs.node_offsets, graphs.face_base,
+                           graphs.face_offsets, graphs.face_half_edges, graphs.he_origin, graphs.centroid, graphs.bbox,
+                           graphs.backdrop, position, box)
     return dataclasses.replace(result, occ_position=position, occ_box=box)
 
 

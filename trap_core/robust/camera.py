@@ -22,14 +22,12 @@ region that can be matched to one in the next frame as a two-frame path of its o
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
-
 import cv2
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, ObservedPaths, reaches_border
-from trap_core.robust._kernels import later_and_last, matched_regions
-from trap_core.rag import PlaneGraph
+from trap_core.clustering import ClusterSummary, ObservedPaths
+from trap_core.robust._kernels import later_and_last, region_steps
+from trap_core.rag import StackedGraphs
 
 GRID = 12  # cells per side of the frame, one vote each for the camera's motion
 AGREE_PX = 1.0  # a cell (a pattern) agrees with a camera motion that puts it within this
@@ -39,12 +37,17 @@ HOP_SHARE = 0.5  # a pattern with this share of its world path in hops, a cluste
 # patterns, moves in hops (world_steps; which occurrences count: trap_core.robust.hops)
 
 
-def camera_paths(graphs: Sequence[PlaneGraph], observed: ObservedPaths, reach: float) -> ObservedPaths:
+def camera_paths(graphs: StackedGraphs, observed: ObservedPaths, reach: float) -> ObservedPaths:
     """The paths :func:`camera_transforms` is fitted to: the patterns' ``observed`` paths, which
     the caller places without the backdrop (:func:`~trap_core.clustering.observed_paths` of
     :func:`~trap_core.robust.backdrop.without_backdrop`),
-    and the regions matched from frame to frame (:func:`_region_steps`, at most ``reach`` px
-    apart) as paths of their own. ``graphs[i]`` is frame ``i``.
+    and the regions matched from frame to frame in the video's stacked ``graphs`` (at most
+    ``reach`` px apart) as two-frame paths of their own: of the regions that are not the backdrop
+    and do not reach the image's edge (their barycentres move with the crop), two of one colour
+    label whose areas differ by at most ``MATCH_AREA_RATIO``, each the other's nearest such.
+
+    Unlike frequent patterns, every region of the background votes, however plain the scene;
+    regions matched wrongly, and those of the objects, are outliers to the fit.
 
     Over four photographs with a backdrop, the camera's motion read from positions with it was
     0.36-0.96 px a frame off the true pan (median over 12-frame windows), and 0.00 without it.
@@ -53,47 +56,13 @@ def camera_paths(graphs: Sequence[PlaneGraph], observed: ObservedPaths, reach: f
     regions, 0.47 (``benchmarks/camera_motion.py``).
     """
     first_id = int(observed.pattern.max()) + 1 if observed.pattern.size else 0
-    steps = _region_steps(graphs, [graph.backdrop for graph in graphs], reach, first_id)
-    return ObservedPaths(np.concatenate([observed.pattern, steps.pattern]),
-                         np.concatenate([observed.frame, steps.frame]),
-                         np.concatenate([observed.position, steps.position]))
-
-
-def _region_steps(graphs: Sequence[PlaneGraph], backdrops: list[np.ndarray], reach: float,
-                  first_id: int) -> ObservedPaths:
-    """Regions matched between consecutive frames, each pair a two-frame path with ids from
-    ``first_id``: of the regions that are not the backdrop and do not reach the image's edge
-    (their barycentres move with the crop), two of one colour label whose areas differ by at
-    most ``MATCH_AREA_RATIO``, each the other's nearest such within ``reach`` px.
-
-    Unlike frequent patterns, every region of the background votes, however plain the scene;
-    regions matched wrongly, and those of the objects, are outliers to the fit."""
-    pattern, frame, position = [], [], []
-    next_id = first_id
-    kept = [_inner_regions(graph, backdrop) for graph, backdrop in zip(graphs, backdrops)]
-    for t in range(len(graphs) - 1):
-        here, there = kept[t], kept[t + 1]
-        if here.size == 0 or there.size == 0:
-            continue
-        a, b = graphs[t], graphs[t + 1]
-        rows, next_rows = matched_regions(a.centroid[here].astype(np.float64), a.area[here].astype(np.float64),
-                                          a.label[here], b.centroid[there].astype(np.float64),
-                                          b.area[there].astype(np.float64), b.label[there], float(reach),
-                                          MATCH_AREA_RATIO)
-        pattern.append(np.repeat(next_id + np.arange(rows.size), 2))
-        next_id += rows.size
-        frame.append(np.tile([t, t + 1], rows.size))
-        position.append(np.stack([a.centroid[here[rows]], b.centroid[there[next_rows]]], axis=1).reshape(-1, 2))
-    if not pattern:
-        return ObservedPaths(np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros((0, 2)))
-    return ObservedPaths(np.concatenate(pattern), np.concatenate(frame).astype(np.int64), np.concatenate(position))
-
-
-def _inner_regions(graph: PlaneGraph, backdrop: np.ndarray) -> np.ndarray:
-    """Regions of ``graph`` that are not the backdrop and do not reach the image's edge."""
-    corner = graph.bbox[:, :2]
-    cut = reaches_border(np.column_stack([corner, graph.bbox[:, 2:] - corner + 1]), *graph.frame_size, margin=0.0)
-    return np.flatnonzero(~cut & ~backdrop)
+    first, second, frames = region_steps(graphs.node_offsets, graphs.bbox, graphs.centroid, graphs.area, graphs.label,
+                                         graphs.backdrop, graphs.by_place, float(reach), MATCH_AREA_RATIO)
+    return ObservedPaths(np.concatenate([observed.pattern, np.repeat(first_id + np.arange(first.size), 2)]),
+                         np.concatenate([observed.frame, np.column_stack([frames, frames + 1]).reshape(-1)]),
+                         np.concatenate([observed.position,
+                                         np.stack([graphs.centroid[first], graphs.centroid[second]],
+                                                  axis=1).reshape(-1, 2)]))
 
 
 def camera_transforms(paths: ObservedPaths, n_frames: int, image_steps: np.ndarray | None = None) -> np.ndarray:

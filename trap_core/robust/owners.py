@@ -22,11 +22,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
-from scipy import sparse
-
 from trap_core.mining import MiningResult
 from trap_core.rag import StackedGraphs
 from trap_core.rag._kernels import video_sets_nodes
+from trap_core.robust._kernels import shared_support
 
 MOST = 0.5        # share of a pattern's frames that must point to the other cluster (more than)
 TWO_PLACES = 0.25  # share of its frames pointing there while its own cluster is in two places (at least)
@@ -57,19 +56,17 @@ def hand_to_owners(result: MiningResult, labels: np.ndarray, selected: Sequence[
         return labels
     slot = np.full(int(labels.max()) + 1, -1, dtype=np.int64)
     slot[np.asarray(selected)] = np.arange(len(selected))
-    sighting_pattern, sighting_frame, shared = _shared_regions(result, patterns, graphs)
+    sighting_pattern, sighting_frame, holders, nodes = _held_regions(result, patterns, graphs)
     cluster = slot[labels[patterns[sighting_pattern]]]
     weight = result.st_occurrences[patterns[sighting_pattern]].astype(float)  # occurrences: its lifetime
     n_sightings, n_clusters = cluster.size, len(selected)
-    support = np.zeros((n_sightings, n_clusters))
-    np.add.at(support, (shared[0], cluster[shared[1]]), weight[shared[1]])
+    support, own_sharers = shared_support(holders, nodes, int(graphs.node_offsets[-1]) + len(graphs), cluster,
+                                          weight, n_clusters)
     rows = np.arange(n_sightings)
     own = support[rows, cluster].copy()
     support[rows, cluster] = -np.inf
     other = support.argmax(axis=1)
     goes = support[rows, other] > own
-    same = cluster[shared[0]] == cluster[shared[1]]
-    own_sharers = np.bincount(shared[0][same], minlength=n_sightings)
     present = np.zeros((int(sighting_frame.max()) + 1, n_clusters), dtype=np.int64)
     np.add.at(present, (sighting_frame, cluster), 1)
     two_places = present[sighting_frame, cluster] - 1 > own_sharers
@@ -86,22 +83,19 @@ def hand_to_owners(result: MiningResult, labels: np.ndarray, selected: Sequence[
     return handed
 
 
-def _shared_regions(result: MiningResult, patterns: np.ndarray,
-                    graphs: StackedGraphs) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, np.ndarray]]:
-    """Sightings (one pattern in one frame: index into ``patterns`` and frame) and the pairs of
-    distinct sightings that hold a common region (so of one frame)."""
+def _held_regions(result: MiningResult, patterns: np.ndarray,
+                  graphs: StackedGraphs) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Sightings (one pattern in one frame: index into ``patterns`` and frame) and the regions
+    they hold: sighting ``holders[e]`` holds region ``nodes[e]`` (a node id over the whole video,
+    :func:`trap_core.rag._kernels.video_sets_nodes`)."""
     rows, owner = result.rows_of(patterns)
     frames = result.occ_frame[rows].astype(np.int64)
-    n_frames = len(graphs)
-    keys, sighting = np.unique(owner.astype(np.int64) * n_frames + frames, return_inverse=True)  # by pattern, frame
+    # by frame, then pattern: sightings that share regions are of one frame, so numbered close together
+    keys, sighting = np.unique(frames * patterns.size + owner, return_inverse=True)
     by_frame = np.argsort(frames, kind="stable")
     known, starts = np.unique(frames[by_frame], return_index=True)
     nodes, ends = video_sets_nodes(result.occ_faces[rows[by_frame]], known, np.r_[starts[1:], by_frame.size],
                                    graphs.node_offsets, graphs.face_base, graphs.face_offsets, graphs.face_half_edges,
                                    graphs.he_origin)
     holders = np.repeat(sighting.reshape(-1)[by_frame], np.diff(ends, prepend=0))
-    incidence = sparse.csr_matrix((np.ones(holders.size), (holders, nodes)),
-                                  shape=(keys.size, int(graphs.node_offsets[-1]) + n_frames))
-    pairs = (incidence @ incidence.T).tocoo()
-    distinct = pairs.row != pairs.col
-    return keys // n_frames, keys % n_frames, (pairs.row[distinct], pairs.col[distinct])
+    return keys % patterns.size, keys // patterns.size, holders, nodes

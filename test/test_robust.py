@@ -162,7 +162,6 @@ def test_world_speed_over_a_lag_ignores_jitter_but_not_motion() -> None:
     over_lag = world_speed(paths, still, 2, lag=12)
     assert step[0] > 1.0  # frame to frame, jitter looks like motion
     assert over_lag[0] < 0.5 and over_lag[1] == pytest.approx(2.0, abs=0.1)
-    np.testing.assert_allclose(world_speed(paths, still, 2, lag=12, chunk=7), over_lag)  # whole patterns per chunk
     short = ObservedPaths(np.zeros(5, int), np.arange(5), np.column_stack([3.0 * np.arange(5), np.zeros(5)]))
     assert world_speed(short, still[:5], 1, lag=12)[0] == pytest.approx(3.0)  # shorter than the lag: end to end
 
@@ -194,8 +193,6 @@ def test_chains_that_hop_between_look_alikes_have_no_steady_steps() -> None:
     assert mean[1] > 5 * speed[1] and in_hops[1] > 0.9
     assert median[2] == pytest.approx(2.5, abs=0.3) and mean[2] == pytest.approx(2.5, abs=0.3) and in_hops[2] == 0
     assert median[3] < 0.5 * speed[3] and in_hops[3] == 0.0
-    for whole, chunked in zip((median, mean, in_hops), world_steps(paths, transforms, 4, hop=10.0, chunk=7)):
-        np.testing.assert_allclose(chunked, whole)  # whole patterns per chunk
     gaps = ObservedPaths(np.zeros(3, int), np.array([0, 5, 10]), np.zeros((3, 2)))
     assert np.isnan(world_steps(gaps, transforms[:11], 1, hop=10.0)[0][0])  # never seen in frames close enough
 

@@ -555,26 +555,98 @@ def goes_along(short_rows: np.ndarray, long_rows: np.ndarray, sizes: np.ndarray,
 
 
 @nb.njit(cache=True, nogil=True)
-def later_and_last(key: np.ndarray, owner: np.ndarray, lag: int) -> tuple[np.ndarray, np.ndarray]:
-    """Per observation (sorted by ``owner``, then frame; ``key`` increasing, ``lag`` > 0 apart
-    within one owner where frames are): the first observation whose key is at least its own plus
-    ``lag``, and the last of its owner's. One pass of two pointers, where a binary search per
-    observation read millions of keys."""
-    n = key.size
-    later = np.empty(n, dtype=np.int64)
-    last = np.empty(n, dtype=np.int64)
-    k = 0
-    for i in range(n):
-        k = max(k, i)
-        while k < n and key[k] < key[i] + lag:
+def _world_positions(frame: np.ndarray, position: np.ndarray, inverse: np.ndarray) -> np.ndarray:
+    """(N, 2) ``position`` of frame ``frame`` mapped to the world by that frame's ``inverse`` transform."""
+    world = np.empty((frame.size, 2))
+    for i in range(frame.size):
+        x, y, f = np.float64(position[i, 0]), np.float64(position[i, 1]), frame[i]
+        for axis in range(2):
+            world[i, axis] = inverse[f, axis, 2] + inverse[f, axis, 0] * x + inverse[f, axis, 1] * y
+    return world
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _apart(world: np.ndarray, i: int, j: int) -> float:
+    """Distance from world position ``i`` to ``j``."""
+    dx, dy = world[j, 0] - world[i, 0], world[j, 1] - world[i, 1]
+    return np.sqrt(dx * dx + dy * dy)
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _median(values: np.ndarray) -> float:
+    ordered = np.sort(values)
+    return 0.5 * (ordered[(ordered.size - 1) // 2] + ordered[ordered.size // 2])
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _run_end(pattern: np.ndarray, lo: int) -> int:
+    """Where the run of observations of ``pattern[lo]`` that starts at ``lo`` ends (sorted by pattern)."""
+    hi = lo + 1
+    while hi < pattern.size and pattern[hi] == pattern[lo]:
+        hi += 1
+    return hi
+
+
+@nb.njit(cache=True, nogil=True)
+def world_speeds(pattern: np.ndarray, frame: np.ndarray, position: np.ndarray, inverse: np.ndarray, lag: int,
+                 n_patterns: int) -> np.ndarray:
+    """:func:`trap_core.robust.world_speed` of observations sorted by ``pattern``, then ``frame``:
+    per pattern, the median over its observations of the world displacement to its first
+    observation at least ``lag`` frames later, per frame (first to last for a pattern seen for
+    less than ``lag`` frames; 0 for one seen once)."""
+    world = _world_positions(frame, position, inverse)
+    speed = np.zeros(n_patterns)
+    rates = np.empty(frame.size)
+    lo = 0
+    while lo < frame.size:
+        hi = _run_end(pattern, lo)
+        k = 0
+        later = lo
+        for i in range(lo, hi):
+            while later < hi and frame[later] < frame[i] + lag:
+                later += 1
+            if later == hi:
+                break
+            rates[k] = _apart(world, i, later) / (frame[later] - frame[i])
             k += 1
-        later[i] = k
-    run_last = n - 1
-    for i in range(n - 1, -1, -1):
-        if i < n - 1 and owner[i] != owner[i + 1]:
-            run_last = i
-        last[i] = run_last
-    return later, last
+        if k == 0 and hi - 1 > lo:
+            rates[0] = _apart(world, lo, hi - 1) / (frame[hi - 1] - frame[lo])
+            k = 1
+        if k:
+            speed[pattern[lo]] = _median(rates[:k])
+        lo = hi
+    return speed
+
+
+@nb.njit(cache=True, nogil=True)
+def world_step_sums(pattern: np.ndarray, frame: np.ndarray, position: np.ndarray, inverse: np.ndarray, hop: float,
+                    max_gap: int, n_patterns: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """For :func:`trap_core.robust.world_steps`, from the world displacements between consecutive
+    observations (sorted by ``pattern``, then ``frame``) at most ``max_gap`` frames apart, per
+    pattern: their median per frame (NaN without any), their summed length, the frames they
+    span, and the length of those of at least ``hop`` px."""
+    world = _world_positions(frame, position, inverse)
+    median = np.full(n_patterns, np.nan)
+    path, frames, hopped = np.zeros(n_patterns), np.zeros(n_patterns), np.zeros(n_patterns)
+    steps = np.empty(frame.size)
+    lo = 0
+    while lo < frame.size:
+        hi = _run_end(pattern, lo)
+        p, k = pattern[lo], 0
+        for i in range(lo, hi - 1):
+            gap = frame[i + 1] - frame[i]
+            if 0 < gap <= max_gap:
+                length = _apart(world, i, i + 1)
+                steps[k] = length / gap
+                k += 1
+                path[p] += length
+                frames[p] += gap
+                if length >= hop:
+                    hopped[p] += length
+        if k:
+            median[p] = _median(steps[:k])
+        lo = hi
+    return median, path, frames, hopped
 
 
 @nb.njit(cache=True, nogil=True)
@@ -776,3 +848,18 @@ def backdrop_free_geometry(occ_frame: np.ndarray, occ_faces: np.ndarray, node_of
                     position[rows[k], c] = placed[k, c]
                 for c in range(4):
                     box[rows[k], c] = boxed[k, c]
+
+
+@nb.njit(cache=True, nogil=True)
+def cut_counts(st_offsets: np.ndarray, st_rows: np.ndarray, patterns: np.ndarray, occ_box: np.ndarray,
+               width: float, height: float) -> np.ndarray:
+    """Per spatio-temporal pattern of ``patterns``: how many of its occurrences have regions that
+    reach the image's edge (their box x0, y0, x1, y1 inclusive; :func:`trap_core.robust.border_share`)."""
+    counts = np.zeros(patterns.size, dtype=np.int64)
+    for k in range(patterns.size):
+        for a in range(st_offsets[patterns[k]], st_offsets[patterns[k] + 1]):
+            x0, y0 = np.float64(occ_box[st_rows[a], 0]), np.float64(occ_box[st_rows[a], 1])
+            x1, y1 = np.float64(occ_box[st_rows[a], 2]), np.float64(occ_box[st_rows[a], 3])
+            if x0 <= 0 or y0 <= 0 or x0 + (x1 - x0 + 1) >= width or y0 + (y1 - y0 + 1) >= height:
+                counts[k] += 1
+    return counts

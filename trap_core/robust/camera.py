@@ -26,7 +26,7 @@ import cv2
 import numpy as np
 
 from trap_core.clustering import ClusterSummary, ObservedPaths
-from trap_core.robust._kernels import later_and_last, region_steps
+from trap_core.robust._kernels import region_steps, world_speeds, world_step_sums
 from trap_core.rag import StackedGraphs
 
 GRID = 12  # cells per side of the frame, one vote each for the camera's motion
@@ -151,8 +151,7 @@ def map_points(homographies: np.ndarray, points: np.ndarray) -> np.ndarray:
     return mapped[:, :2] / mapped[:, 2:]
 
 
-def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, lag: int = 1,
-                chunk: int = 1 << 20) -> np.ndarray:
+def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, lag: int = 1) -> np.ndarray:
     """(S,) speed of each pattern in world coordinates, pixels per frame (0 if seen once).
 
     The median over the pattern's observations of its displacement to the first observation
@@ -161,19 +160,8 @@ def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, l
     takes ``tau``/2 for patterns and ``tau`` for clusters: half a second and a second at 25 Hz),
     jitter of the barycentres (regions changing shape with noise) does not add up while motion
     does.
-    Computed on whole patterns of about ``chunk`` observations at a time (bounded memory).
     """
-    inverse = np.linalg.inv(transforms)
-    speed = np.zeros(n_patterns)
-    for lo, hi in _whole_patterns(paths.pattern, chunk):
-        _chunk_speed(paths.pattern[lo:hi], paths.frame[lo:hi], paths.position[lo:hi], inverse, lag, speed)
-    return speed
-
-
-def _whole_patterns(pattern: np.ndarray, chunk: int) -> list[tuple[int, int]]:
-    """Bounds of runs of about ``chunk`` observations (``pattern``: sorted) that hold whole patterns."""
-    edges = np.searchsorted(pattern, pattern[::chunk], side="left").tolist() + [len(pattern)]
-    return [(lo, hi) for lo, hi in zip(edges[:-1], edges[1:]) if hi > lo]
+    return world_speeds(paths.pattern, paths.frame, paths.position, np.linalg.inv(transforms), lag, n_patterns)
 
 
 def cluster_world_speed(summary: ClusterSummary, transforms: np.ndarray, lag: int) -> np.ndarray:
@@ -192,8 +180,8 @@ def cluster_world_speed(summary: ClusterSummary, transforms: np.ndarray, lag: in
     return world_speed(observed, transforms, len(frames), lag)
 
 
-def world_steps(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, hop: float, max_gap: int = 2,
-                chunk: int = 1 << 20) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def world_steps(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, hop: float,
+                max_gap: int = 2) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Per pattern, from its world displacements between observations at most ``max_gap`` frames
     apart: (S,) the median per frame (NaN for a pattern never seen so close), (S,) the mean per
     frame (its path's length over the frames it spans), and (S,) the share of its path made in
@@ -205,67 +193,8 @@ def world_steps(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, h
     size of the texture's spacing: it stands still between them (its median step is that of
     standing still), or it hops back and forth (its path is many times what the hops add up to).
     (Where the camera's motion is misread, objects too stand still in the world between steps,
-    but those steps are the few px of the error.) Computed on whole patterns of about ``chunk``
-    observations at a time.
+    but those steps are the few px of the error.)
     """
-    inverse = np.linalg.inv(transforms)
-    median = np.full(n_patterns, np.nan)
-    path, frames, hopped = np.zeros(n_patterns), np.zeros(n_patterns), np.zeros(n_patterns)
-    for lo, hi in _whole_patterns(paths.pattern, chunk):
-        pattern, frame = paths.pattern[lo:hi], paths.frame[lo:hi]
-        world = _to_world(frame, paths.position[lo:hi], inverse)
-        gap = np.diff(frame)
-        close = (pattern[1:] == pattern[:-1]) & (gap > 0) & (gap <= max_gap)
-        length = np.linalg.norm(world[1:][close] - world[:-1][close], axis=1)
-        owner = pattern[:-1][close]
-        _owner_medians(owner, length / gap[close], median)
-        path += np.bincount(owner, weights=length, minlength=n_patterns)
-        frames += np.bincount(owner, weights=gap[close], minlength=n_patterns)
-        hopped += np.bincount(owner, weights=length * (length >= hop), minlength=n_patterns)
+    median, path, frames, hopped = world_step_sums(paths.pattern, paths.frame, paths.position,
+                                                   np.linalg.inv(transforms), hop, max_gap, n_patterns)
     return median, path / np.maximum(frames, 1), hopped / np.maximum(path, 1e-12)
-
-
-def _to_world(frame: np.ndarray, position: np.ndarray, inverse: np.ndarray) -> np.ndarray:
-    """(N, 2) ``position`` of frame ``frame`` mapped to the world by that frame's ``inverse`` transform."""
-    world = np.empty((len(frame), 2))
-    for axis in (0, 1):  # row ``axis`` of each observation's inverse transform, one coefficient at a time
-        world[:, axis] = inverse[frame, axis, 2]
-        world[:, axis] += inverse[frame, axis, 0] * position[:, 0]
-        world[:, axis] += inverse[frame, axis, 1] * position[:, 1]
-    return world
-
-
-def _owner_medians(owner: np.ndarray, value: np.ndarray, out: np.ndarray) -> None:
-    """``out[k]`` = the median of the values whose owner is k (owners: non-negative ints), for each owner present."""
-    if owner.size == 0:
-        return
-    base = int(owner.min())
-    local = owner - base
-    # sort by owner, then value: the integer part of the key is the owner (one argsort of floats
-    # is several times faster than a two-key lexsort over millions of observations)
-    order = np.argsort(local + value / (value.max() + 1.0))
-    local, value = local[order], value[order]
-    bounds = np.searchsorted(local, np.arange(int(local[-1]) + 2))
-    count = np.diff(bounds)
-    seen = np.flatnonzero(count)
-    low, high = bounds[seen] + (count[seen] - 1) // 2, bounds[seen] + count[seen] // 2
-    out[base + seen] = 0.5 * (value[low] + value[high])
-
-
-def _chunk_speed(pattern: np.ndarray, frame: np.ndarray, position: np.ndarray, inverse: np.ndarray, lag: int,
-                 speed: np.ndarray) -> None:
-    """:func:`world_speed` of the whole patterns of one run of observations, written into ``speed``."""
-    world = _to_world(frame, position, inverse)
-    local = pattern - pattern[0]
-    stride = int(frame.max()) + lag + 1
-    key = local * stride + frame
-    later, last = later_and_last(key, local, lag)  # observations are sorted by pattern, then frame
-    later = np.where((later < key.size) & (later <= last), later, -1)
-    first = np.r_[True, local[1:] != local[:-1]]
-    short = first & (later < 0) & (last > np.arange(key.size))  # seen for less than lag frames
-    start = np.r_[np.flatnonzero(later >= 0), np.flatnonzero(short)]
-    end = np.r_[later[later >= 0], last[short]]
-    if start.size == 0:
-        return
-    rate = np.linalg.norm(world[end] - world[start], axis=1) / (frame[end] - frame[start])
-    _owner_medians(pattern[0] + local[start], rate, speed)

@@ -35,7 +35,7 @@ from scipy import sparse
 
 from trap_core.clustering import ClusterSummary, Trajectories, reaches_border, summarise
 from trap_core.mining import MiningResult
-from trap_core.robust._kernels import companions_apart, group_distances, mean_pair_distances
+from trap_core.robust._kernels import companions_apart, cut_counts, group_distances, mean_pair_distances
 from trap_core.robust.camera import map_points
 
 
@@ -307,8 +307,7 @@ def border_share(result: MiningResult, patterns: np.ndarray, labels: np.ndarray,
     """(C,) share of each cluster's occurrences (``labels``: cluster of each of ``patterns``) whose
     regions reach the image's edge. Regions cut by the view have barycentres that move with
     the crop, not with what they show: a cluster seen mostly so is no evidence of motion."""
-    owner, cut = _cut_occurrences(result, patterns, width, height)
-    return _share(labels[owner], cut)
+    return _cut_share(labels, _cut_counts(result, patterns, width, height), result.st_occurrences[patterns])
 
 
 def whole_patterns_apart(result: MiningResult, patterns: np.ndarray, labels: np.ndarray, width: int, height: int,
@@ -322,8 +321,8 @@ def whole_patterns_apart(result: MiningResult, patterns: np.ndarray, labels: np.
     road, one disc's few patterns with those of the road's markings): apart, they are judged on
     their own motion (the same labels are returned where no cluster has any).
     """
-    owner, cut = _cut_occurrences(result, patterns, width, height)
-    apart = (_share(labels[owner], cut)[labels] > max_cut) & (_share(owner, cut) <= max_cut)
+    cut, occurrences = _cut_counts(result, patterns, width, height), result.st_occurrences[patterns]
+    apart = (_cut_share(labels, cut, occurrences)[labels] > max_cut) & (cut / np.maximum(occurrences, 1) <= max_cut)
     if not apart.any():
         return labels
     out = labels.copy()
@@ -331,17 +330,16 @@ def whole_patterns_apart(result: MiningResult, patterns: np.ndarray, labels: np.
     return out
 
 
-def _cut_occurrences(result: MiningResult, patterns: np.ndarray, width: float,
-                     height: float) -> tuple[np.ndarray, np.ndarray]:
-    """For every occurrence of ``patterns``: its pattern (index into ``patterns``) and whether its
-    regions reach the image's edge (margin 0)."""
-    rows, owner = result.rows_of(patterns)
-    return owner, _occurrences_reach_border(result, rows, width, height, margin=0.0)
+def _cut_counts(result: MiningResult, patterns: np.ndarray, width: float, height: float) -> np.ndarray:
+    """Per pattern of ``patterns``: its occurrences whose regions reach the image's edge (margin 0)."""
+    return cut_counts(result.st_offsets, result.st_rows, np.asarray(patterns, dtype=np.int64), result.occ_box,
+                      float(width), float(height))
 
 
-def _share(keys: np.ndarray, flags: np.ndarray) -> np.ndarray:
-    """Per key 0..max: the share of its items whose ``flags`` are set (0 for a key with none)."""
-    return np.bincount(keys, weights=flags) / np.maximum(np.bincount(keys), 1)
+def _cut_share(labels: np.ndarray, cut: np.ndarray, occurrences: np.ndarray) -> np.ndarray:
+    """Per cluster 0..max of ``labels`` (one per pattern): the share of its patterns' ``occurrences``
+    that are ``cut`` (0 for a cluster with none)."""
+    return np.bincount(labels, weights=cut) / np.maximum(np.bincount(labels, weights=occurrences), 1)
 
 
 def _occurrences_reach_border(result: MiningResult, rows: np.ndarray, width: float, height: float,

@@ -863,3 +863,26 @@ def cut_counts(st_offsets: np.ndarray, st_rows: np.ndarray, patterns: np.ndarray
             if x0 <= 0 or y0 <= 0 or x0 + (x1 - x0 + 1) >= width or y0 + (y1 - y0 + 1) >= height:
                 counts[k] += 1
     return counts
+
+
+@nb.njit(cache=True, nogil=True)
+def pattern_mean_sizes(st_offsets: np.ndarray, st_rows: np.ndarray, patterns: np.ndarray, box: np.ndarray,
+               position: np.ndarray, placed_position: np.ndarray) -> np.ndarray:
+    """:func:`trap_core.robust.pattern_sizes` of ``patterns``: per pattern, the mean over its
+    occurrences of the diagonal of ``box`` (x0, y0, x1, y1 inclusive) plus, where
+    ``placed_position`` has rows, twice the distance from ``position`` to it (in float32, as the
+    positions are)."""
+    sizes = np.zeros(patterns.size)
+    pulled = placed_position.shape[0] > 0
+    for k in range(patterns.size):
+        lo, hi = st_offsets[patterns[k]], st_offsets[patterns[k] + 1]
+        for a in range(lo, hi):
+            r = st_rows[a]
+            size = np.hypot(np.float64(box[r, 2]) - np.float64(box[r, 0]) + 1,
+                            np.float64(box[r, 3]) - np.float64(box[r, 1]) + 1)
+            if pulled:
+                dx, dy = position[r, 0] - placed_position[r, 0], position[r, 1] - placed_position[r, 1]
+                size += 2 * np.sqrt(dx * dx + dy * dy)
+            sizes[k] += size
+        sizes[k] /= max(hi - lo, 1)
+    return sizes

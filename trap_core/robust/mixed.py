@@ -17,7 +17,7 @@ import numpy as np
 
 from trap_core.clustering import Hierarchy, Trajectories
 from trap_core.mining import MiningResult
-from trap_core.robust._kernels import any_pair_apart, any_pair_far
+from trap_core.robust._kernels import any_pair_apart, any_pair_far, pattern_mean_sizes
 
 
 def pattern_sizes(result: MiningResult, patterns: np.ndarray, placed: MiningResult | None = None) -> np.ndarray:
@@ -32,13 +32,9 @@ def pattern_sizes(result: MiningResult, patterns: np.ndarray, placed: MiningResu
     keep the backdrop's pull toward the middle of the view, and two patterns of one object are
     then at most half the sum of their sizes apart.
     """
-    rows, owner = result.rows_of(patterns)
-    box = (result if placed is None else placed).occ_box[rows].astype(float)
-    size = np.hypot(box[:, 2] - box[:, 0] + 1, box[:, 3] - box[:, 1] + 1)
-    if placed is not None:
-        size += 2 * np.linalg.norm(result.occ_position[rows] - placed.occ_position[rows], axis=1)
-    lengths = np.bincount(owner, minlength=patterns.size)
-    return np.bincount(owner, weights=size, minlength=patterns.size) / np.maximum(lengths, 1)
+    box = (result if placed is None else placed).occ_box
+    return pattern_mean_sizes(result.st_offsets, result.st_rows, np.asarray(patterns, dtype=np.int64), box,
+                              result.occ_position, result.occ_position[:0] if placed is None else placed.occ_position)
 
 
 def split_mixed(hierarchy: Hierarchy, distances: np.ndarray, paths: Trajectories, sizes: np.ndarray,

@@ -554,21 +554,20 @@ def goes_along(short_rows: np.ndarray, long_rows: np.ndarray, sizes: np.ndarray,
     return along
 
 
-@nb.njit(cache=True, nogil=True)
-def _world_positions(frame: np.ndarray, position: np.ndarray, inverse: np.ndarray) -> np.ndarray:
-    """(N, 2) ``position`` of frame ``frame`` mapped to the world by that frame's ``inverse`` transform."""
-    world = np.empty((frame.size, 2))
-    for i in range(frame.size):
-        x, y, f = np.float64(position[i, 0]), np.float64(position[i, 1]), frame[i]
-        for axis in range(2):
-            world[i, axis] = inverse[f, axis, 2] + inverse[f, axis, 0] * x + inverse[f, axis, 1] * y
-    return world
+@nb.njit(cache=True, nogil=True, inline="always")
+def _world_point(frame: np.ndarray, position: np.ndarray, inverse: np.ndarray, i: int) -> tuple[float, float]:
+    """Observation ``i``'s ``position`` mapped to the world by its frame's ``inverse`` transform."""
+    x, y, f = np.float64(position[i, 0]), np.float64(position[i, 1]), frame[i]
+    return (inverse[f, 0, 2] + inverse[f, 0, 0] * x + inverse[f, 0, 1] * y,
+            inverse[f, 1, 2] + inverse[f, 1, 0] * x + inverse[f, 1, 1] * y)
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _apart(world: np.ndarray, i: int, j: int) -> float:
-    """Distance from world position ``i`` to ``j``."""
-    dx, dy = world[j, 0] - world[i, 0], world[j, 1] - world[i, 1]
+def _apart(frame: np.ndarray, position: np.ndarray, inverse: np.ndarray, i: int, j: int) -> float:
+    """World distance from observation ``i`` to ``j`` (:func:`_world_point`)."""
+    xi, yi = _world_point(frame, position, inverse, i)
+    xj, yj = _world_point(frame, position, inverse, j)
+    dx, dy = xj - xi, yj - yi
     return np.sqrt(dx * dx + dy * dy)
 
 
@@ -588,15 +587,24 @@ def _run_end(pattern: np.ndarray, lo: int) -> int:
 
 
 @nb.njit(cache=True, nogil=True)
+def _longest_run(pattern: np.ndarray) -> int:
+    """The most observations of one pattern (sorted by pattern): the buffers' size."""
+    longest, lo = 0, 0
+    while lo < pattern.size:
+        hi = _run_end(pattern, lo)
+        longest, lo = max(longest, hi - lo), hi
+    return longest
+
+
+@nb.njit(cache=True, nogil=True)
 def world_speeds(pattern: np.ndarray, frame: np.ndarray, position: np.ndarray, inverse: np.ndarray, lag: int,
                  n_patterns: int) -> np.ndarray:
     """:func:`trap_core.robust.world_speed` of observations sorted by ``pattern``, then ``frame``:
     per pattern, the median over its observations of the world displacement to its first
     observation at least ``lag`` frames later, per frame (first to last for a pattern seen for
     less than ``lag`` frames; 0 for one seen once)."""
-    world = _world_positions(frame, position, inverse)
     speed = np.zeros(n_patterns)
-    rates = np.empty(frame.size)
+    rates = np.empty(_longest_run(pattern))
     lo = 0
     while lo < frame.size:
         hi = _run_end(pattern, lo)
@@ -607,10 +615,10 @@ def world_speeds(pattern: np.ndarray, frame: np.ndarray, position: np.ndarray, i
                 later += 1
             if later == hi:
                 break
-            rates[k] = _apart(world, i, later) / (frame[later] - frame[i])
+            rates[k] = _apart(frame, position, inverse, i, later) / (frame[later] - frame[i])
             k += 1
         if k == 0 and hi - 1 > lo:
-            rates[0] = _apart(world, lo, hi - 1) / (frame[hi - 1] - frame[lo])
+            rates[0] = _apart(frame, position, inverse, lo, hi - 1) / (frame[hi - 1] - frame[lo])
             k = 1
         if k:
             speed[pattern[lo]] = _median(rates[:k])
@@ -625,10 +633,9 @@ def world_step_sums(pattern: np.ndarray, frame: np.ndarray, position: np.ndarray
     observations (sorted by ``pattern``, then ``frame``) at most ``max_gap`` frames apart, per
     pattern: their median per frame (NaN without any), their summed length, the frames they
     span, and the length of those of at least ``hop`` px."""
-    world = _world_positions(frame, position, inverse)
     median = np.full(n_patterns, np.nan)
     path, frames, hopped = np.zeros(n_patterns), np.zeros(n_patterns), np.zeros(n_patterns)
-    steps = np.empty(frame.size)
+    steps = np.empty(_longest_run(pattern))
     lo = 0
     while lo < frame.size:
         hi = _run_end(pattern, lo)
@@ -636,7 +643,7 @@ def world_step_sums(pattern: np.ndarray, frame: np.ndarray, position: np.ndarray
         for i in range(lo, hi - 1):
             gap = frame[i + 1] - frame[i]
             if 0 < gap <= max_gap:
-                length = _apart(world, i, i + 1)
+                length = _apart(frame, position, inverse, i, i + 1)
                 steps[k] = length / gap
                 k += 1
                 path[p] += length

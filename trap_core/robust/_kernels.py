@@ -573,6 +573,7 @@ def _apart(frame: np.ndarray, position: np.ndarray, inverse: np.ndarray, i: int,
 
 @nb.njit(cache=True, nogil=True, inline="always")
 def _median(values: np.ndarray) -> float:
+    """The median of ``values``: for an even count, half the sum of the two middle ones."""
     ordered = np.sort(values)
     return 0.5 * (ordered[(ordered.size - 1) // 2] + ordered[ordered.size // 2])
 

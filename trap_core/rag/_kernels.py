@@ -357,18 +357,26 @@ def sets_nodes(face_sets: np.ndarray, he_origin: np.ndarray, face_half_edges: np
 
 
 @nb.njit(cache=True, nogil=True)
+def stacked_face_ids(face_sets: np.ndarray, base: int) -> np.ndarray:
+    """``face_sets`` (face ids within one frame, -1 padded) as ids of the stacked graphs' faces
+    (:class:`trap_core.rag.StackedGraphs`: that frame's ``face_base`` is ``base``), a copy."""
+    rows = face_sets.astype(np.int64)
+    for i in range(rows.shape[0]):
+        for j in range(rows.shape[1]):
+            if rows[i, j] >= 0:
+                rows[i, j] += base
+    return rows
+
+
+@nb.njit(cache=True, nogil=True)
 def stacked_sets_nodes(face_sets: np.ndarray, frame: int, node_offsets: np.ndarray, face_base: np.ndarray,
                        face_offsets: np.ndarray, face_half_edges: np.ndarray,
                        he_origin: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """:func:`sets_nodes` of occurrences ``face_sets`` (face ids within frame ``frame``, -1
     padded) in the video's graphs stacked (:class:`trap_core.rag.StackedGraphs`); nodes are
     numbered within the frame."""
-    rows = face_sets.astype(np.int64)
-    for i in range(rows.shape[0]):
-        for j in range(rows.shape[1]):
-            if rows[i, j] >= 0:
-                rows[i, j] += face_base[frame]
-    return sets_nodes(rows, he_origin, face_half_edges, face_offsets, node_offsets[frame + 1] - node_offsets[frame] + 1)
+    return sets_nodes(stacked_face_ids(face_sets, face_base[frame]), he_origin, face_half_edges, face_offsets,
+                      node_offsets[frame + 1] - node_offsets[frame] + 1)
 
 
 @nb.njit(cache=True, nogil=True)

@@ -8,7 +8,7 @@ import numba as nb
 import numpy as np
 
 from trap_core.mining._kernels import occurrence_geometry
-from trap_core.rag._kernels import nodes_box
+from trap_core.rag._kernels import nodes_box, stacked_face_ids
 
 # An object's part keeps its area from frame to frame; a background region the object passes
 # over loses or regains the part it hides, and its barycentre drifts with the object.
@@ -237,6 +237,13 @@ def still_core_boxes(node_offsets: np.ndarray, bbox: np.ndarray, centroid: np.nd
         boxes[i] = nodes_box(bbox[lo:hi], thickness[lo:hi], nearest[lo:hi], held, no_box, thin_below, line_reach)
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def _reaches_edge(x0: float, y0: float, x1: float, y1: float, width: float, height: float) -> bool:
+    """Whether a box (x0, y0, x1, y1 inclusive, whole pixels) touches the edge of a ``width`` x
+    ``height`` image (:func:`trap_core.clustering.reaches_border` with margin 0)."""
+    return x0 <= 0 or y0 <= 0 or x1 + 1 >= width or y1 + 1 >= height
+
+
 @nb.njit(cache=True, nogil=True)
 def region_steps(node_offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray,
                  label: np.ndarray, backdrop: np.ndarray, by_place: np.ndarray, reach: float,
@@ -255,8 +262,8 @@ def region_steps(node_offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarra
             continue
         width, height = bbox[lo:hi, 2].max() + 1, bbox[lo:hi, 3].max() + 1
         for r in range(lo, hi):
-            inner[r] = (not backdrop[r] and bbox[r, 0] > 0 and bbox[r, 1] > 0 and bbox[r, 2] + 1 < width
-                        and bbox[r, 3] + 1 < height)
+            inner[r] = not backdrop[r] and not _reaches_edge(bbox[r, 0], bbox[r, 1], bbox[r, 2], bbox[r, 3], width,
+                                                             height)
     first, second, frames = [], [], []
     placed = np.empty(area.size, dtype=np.int64)  # the next frame's inner regions, by label then x
     best_next = np.empty(area.size, dtype=np.int64)
@@ -828,28 +835,15 @@ def backdrop_free_geometry(occ_frame: np.ndarray, occ_faces: np.ndarray, node_of
     too gets, in ``position`` and ``box``, the :func:`~trap_core.mining._kernels.occurrence_geometry`
     of those others. The video's regions are stacked as for :func:`grow_boxes`."""
     n_frames = node_offsets.size - 1
-    count = np.zeros(n_frames + 1, dtype=np.int64)
-    for frame in occ_frame:
-        count[frame + 1] += 1
-    for t in range(n_frames):
-        count[t + 1] += count[t]
-    by_frame = np.empty(occ_frame.size, dtype=np.int64)
-    cursor = count[:-1].copy()
-    for r in range(occ_frame.size):
-        by_frame[cursor[occ_frame[r]]] = r
-        cursor[occ_frame[r]] += 1
+    by_frame, frame_offsets = _grouped(occ_frame, n_frames)
     for t in range(n_frames):
         lo, hi = node_offsets[t], node_offsets[t + 1]
-        rows = by_frame[count[t]:count[t + 1]]
+        rows = by_frame[frame_offsets[t]:frame_offsets[t + 1]]
         if rows.size == 0 or not backdrop[lo:hi].any():
             continue
-        sets = np.full((rows.size, occ_faces.shape[1]), -1, dtype=np.int64)
-        for k in range(rows.size):
-            for j in range(occ_faces.shape[1]):
-                if occ_faces[rows[k], j] >= 0:
-                    sets[k, j] = occ_faces[rows[k], j] + face_base[t]
-        placed, boxed, _ = occurrence_geometry(sets, he_origin, face_half_edges, face_offsets, centroid[lo:hi],
-                                               bbox[lo:hi], backdrop[lo:hi])
+        placed, boxed, _ = occurrence_geometry(stacked_face_ids(occ_faces[rows], face_base[t]), he_origin,
+                                               face_half_edges, face_offsets, centroid[lo:hi], bbox[lo:hi],
+                                               backdrop[lo:hi])
         for k in range(rows.size):
             if not np.isnan(placed[k, 0]):
                 for c in range(2):
@@ -866,16 +860,16 @@ def cut_counts(st_offsets: np.ndarray, st_rows: np.ndarray, patterns: np.ndarray
     counts = np.zeros(patterns.size, dtype=np.int64)
     for k in range(patterns.size):
         for a in range(st_offsets[patterns[k]], st_offsets[patterns[k] + 1]):
-            x0, y0 = np.float64(occ_box[st_rows[a], 0]), np.float64(occ_box[st_rows[a], 1])
-            x1, y1 = np.float64(occ_box[st_rows[a], 2]), np.float64(occ_box[st_rows[a], 3])
-            if x0 <= 0 or y0 <= 0 or x0 + (x1 - x0 + 1) >= width or y0 + (y1 - y0 + 1) >= height:
+            box = occ_box[st_rows[a]]
+            if _reaches_edge(np.float64(box[0]), np.float64(box[1]), np.float64(box[2]), np.float64(box[3]),
+                             width, height):
                 counts[k] += 1
     return counts
 
 
 @nb.njit(cache=True, nogil=True)
 def pattern_mean_sizes(st_offsets: np.ndarray, st_rows: np.ndarray, patterns: np.ndarray, box: np.ndarray,
-               position: np.ndarray, placed_position: np.ndarray) -> np.ndarray:
+                       position: np.ndarray, placed_position: np.ndarray) -> np.ndarray:
     """:func:`trap_core.robust.pattern_sizes` of ``patterns``: per pattern, the mean over its
     occurrences of the diagonal of ``box`` (x0, y0, x1, y1 inclusive) plus, where
     ``placed_position`` has rows, twice the distance from ``position`` to it (in float32, as the

@@ -64,4 +64,3 @@ def drop_still_regions(track: Track, cores: FrameCores, graphs: StackedGraphs, t
                       graphs.nearest_in_colour, frames, cores.core, cores.core_ends, cores.top, cores.top_ends, slot,
                       track.points.astype(float), cameras, boxes, lag, AREA_FACTOR, *edge_line_limits(pixel))
     return dataclasses.replace(track, boxes=boxes)
-

@@ -1973,6 +1973,26 @@ def test_a_short_piece_apart_from_the_rest_of_its_track_is_dropped() -> None:
     assert kept(np.r_[100:110]) == list(range(100, 110))
 
 
+def test_a_track_on_two_tracked_objects_in_turn_goes_despite_jitter() -> None:
+    """Track 3 holds track 1's object in frames 0-49 and, with no gap or jump, track 2's in
+    50-99, but every fourth frame its box is off both (jitter: 75 % held, runs of one frame):
+    the held frames bridge those holes and it is dropped. Off in runs of five frames (HOLE is
+    3), the same share is not bridged and it stays."""
+    from trap_core.robust import drop_repeated_pieces
+    from trap_core.robust.duplicates import HOLE
+    t = np.arange(100, dtype=float)
+    first = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    second = first + [25.0, 0.0, 0.0, 0.0]  # beside it, neither centre in the other box, no jump
+    on_both = np.vstack([first[:50], second[50:]])
+    off = on_both + [0.0, 25.0, 0.0, 0.0]  # its centre below both boxes, but no jump either
+    tracks = [_as_track(1, np.arange(100), first), _as_track(2, np.arange(100), second)]
+    jittered = np.where((np.arange(100) % 4 == 3)[:, None], off, on_both)
+    assert [t.track_id for t in drop_repeated_pieces(tracks + [_as_track(3, np.arange(100), jittered)], 12)] == [1, 2]
+    wide = np.where((np.arange(100) % 20 >= 15)[:, None], off, on_both)  # 5 frames off in 20
+    assert HOLE < 5
+    assert [len(t) for t in drop_repeated_pieces(tracks + [_as_track(3, np.arange(100), wide)], 12)] == [100] * 3
+
+
 def test_a_piece_of_a_track_on_another_tracks_object_is_dropped() -> None:
     """Track 2 holds its own object in frames 0-39 and, after a 30-frame gap, track 1's object
     in 70-99 (IoU 0.8, a box inside track 1's, or one whose centre is in it): that piece goes. A

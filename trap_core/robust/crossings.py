@@ -18,7 +18,7 @@ import numpy as np
 
 from trap_core.clustering import Track, box_centres, box_iou, box_path, in_rows, usual_size, with_frames
 from trap_core.robust._kernels import window_lines
-from trap_core.robust.duplicates import TURN
+from trap_core.robust.duplicates import TURN, flag_runs
 from trap_core.robust.motion import straight_line
 from trap_core.robust.rejoin import structure_similarity
 
@@ -113,8 +113,7 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
                 continue
             size = min(sizes[a], sizes[b])
             close = np.linalg.norm(centres[a] - centres[b], axis=1) < size  # NaN where either is absent
-            edges = np.diff(np.concatenate(([0], close.astype(np.int8), [0])))
-            for start, stop in zip(np.flatnonzero(edges == 1).tolist(), np.flatnonzero(edges == -1).tolist()):
+            for start, stop in zip(*(bounds.tolist() for bounds in flag_runs(close))):
                 blended = np.nan_to_num(box_iou(boxes[a, start:stop], boxes[b, start:stop])).max() >= min_iou
                 found = _best_cut(centres[a], centres[b], range(start, stop + 1), window, TURN * size,
                                   window if blended else 0)

@@ -193,15 +193,18 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
     box lies in the other: a piece on part of it, or off it by less than half a size) in at
     least ``min_share`` of its frames, its object is tracked already there: a path that went on
     with a look-alike and came back with it after a gap, which no turn shows
-    (:func:`drop_shared_stretches` needs the track's motion on both sides). Tracks are taken in
-    order, each against the others as left.
+    (:func:`drop_shared_stretches` needs the track's motion on both sides). Runs of up to
+    ``HOLE`` frames where jitter parts the boxes count as held, as in a shared stretch: a track
+    that held one object and then, with no jump, another (two objects it went along with, each
+    tracked) was kept at 78 % of its frames held. Tracks are taken in order, each against the
+    others as left.
     """
     out = list(tracks)
     for slot, track in enumerate(out):
         repeated = repeats_others(track, out[:slot] + out[slot + 1:], min_iou, min_inside, centred=True)
         keep = np.ones(len(track), dtype=bool)
         for rows in track_pieces(track.frames, min_gap, track.boxes):
-            if np.mean(repeated[rows]) >= min_share:
+            if np.mean(_holes_bridged(repeated[rows])) >= min_share:
                 keep[rows] = False
         out[slot] = in_rows(track, keep)
     return [t for t in out if len(t)]
@@ -213,15 +216,25 @@ def shared_stretches(boxes: np.ndarray, other: np.ndarray, min_frames: int, min_
     hold the same object (:func:`same_boxes`: IoU at least ``min_iou``, or one at least
     ``min_inside`` inside the other, as the part of an object left in view behind another),
     holes of up to ``HOLE`` frames bridged, of at least ``min_frames`` frames."""
-    same = same_boxes(boxes, other, min_iou, min_inside)
-    edges = np.diff(np.concatenate(([0], same.astype(np.int8), [0])))
-    runs: list[list[int]] = []
-    for begin, stop in zip(np.flatnonzero(edges == 1).tolist(), np.flatnonzero(edges == -1).tolist()):
-        if runs and begin - runs[-1][1] <= HOLE:
-            runs[-1][1] = stop
-        else:
-            runs.append([begin, stop])
-    return [(begin, stop - 1) for begin, stop in runs if stop - begin >= min_frames]
+    begins, stops = flag_runs(_holes_bridged(same_boxes(boxes, other, min_iou, min_inside)))
+    return [(begin, stop - 1) for begin, stop in zip(begins.tolist(), stops.tolist()) if stop - begin >= min_frames]
+
+
+def _holes_bridged(flags: np.ndarray) -> np.ndarray:
+    """``flags`` (bool) with each run of at most ``HOLE`` False between two True set True: frames
+    in a row where jitter parts two boxes that hold the same object."""
+    begins, stops = flag_runs(flags)
+    out = flags.copy()
+    for stop, begin in zip(stops[:-1].tolist(), begins[1:].tolist()):
+        if begin - stop <= HOLE:
+            out[stop:begin] = True
+    return out
+
+
+def flag_runs(flags: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """First index and index past the last of each run of True in ``flags``."""
+    edges = np.diff(np.concatenate(([0], flags.astype(np.int8), [0])))
+    return np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
 
 
 def _turns(own: np.ndarray, other: np.ndarray, at: int, window: int, least: float) -> bool:

@@ -150,6 +150,25 @@ def test_unsupervised_selection_asks_a_cluster_to_be_seen_not_only_to_span() -> 
     assert select_clusters(summary, 100, n_objects=2, seen=seen) == [0, 1]
 
 
+def test_occurrences_cut_by_the_view_do_not_count_as_seen() -> None:
+    """Pattern 0 (cluster 0): 60 occurrences inside a 640x480 view, then 40 with the frame's box
+    (the backdrop); pattern 1 (cluster 1): 20 at the left edge. With the view, cluster 0 is seen
+    in 60 frames and cluster 1 in none; with pattern 1's boxes placed otherwise (``boxes``:
+    without the backdrop, inside the view), in its 20."""
+    inside, frame_box, at_edge = [100, 100, 150, 150], [0, 0, 639, 479], [0, 200, 50, 250]
+    box = np.array([inside] * 60 + [frame_box] * 40 + [at_edge] * 20, dtype=np.float32)
+    frames = np.r_[np.arange(100), np.arange(20)]
+    result = MiningResult(np.array([1, 2]), np.array([100, 20]), np.array([1, 1]), frames,
+                          np.r_[np.zeros(100, int), np.ones(20, int)], np.zeros((120, 2)), box, box,
+                          np.zeros((120, 1), np.int64), np.array([0, 1]), np.array([0, 100, 120]), np.arange(120))
+    patterns, labels = np.array([0, 1]), np.array([0, 1])
+    assert seen_frames(result, patterns, labels).tolist() == [100, 20]
+    assert seen_frames(result, patterns, labels, (640, 480)).tolist() == [60, 0]
+    placed = box.copy()
+    placed[100:] = [10, 200, 60, 250]
+    assert seen_frames(result, patterns, labels, (640, 480), placed).tolist() == [60, 20]
+
+
 def test_twin_clusters_are_beside_a_kept_one_with_frames_it_lacks() -> None:
     """Cluster 1 holds kept cluster 0's object and goes on 40 frames after it ends; cluster 2 is
     near it for 20 frames only; cluster 3 is kept."""

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from trap_core.clustering._kernels import cluster_sums
+from trap_core.clustering.tracks import reaches_border
 from trap_core.clustering.trajectory import Trajectories
 from trap_core.mining import MiningResult
 
@@ -47,14 +48,26 @@ def _longest(summary: ClusterSummary, candidates: np.ndarray, lengths: np.ndarra
     return int(near[order[0]])
 
 
-def seen_frames(result: MiningResult, patterns: np.ndarray, labels: np.ndarray) -> np.ndarray:
+def seen_frames(result: MiningResult, patterns: np.ndarray, labels: np.ndarray,
+                view: tuple[float, float] | None = None, boxes: np.ndarray | None = None) -> np.ndarray:
     """(C,) frames in which each cluster (``labels``: cluster of each of ``patterns``) has an
     occurrence. A cluster's length counts every frame its patterns span, and a pattern's path
     bridges gaps of up to ``tau`` frames: one pattern seen now and then spans many frames it is
-    not seen in (a background structure that noise makes and unmakes)."""
+    not seen in (a background structure that noise makes and unmakes).
+
+    With the ``view``'s width and height, only occurrences whose regions do not reach its edge
+    count (``boxes``: each occurrence's region box, x0, y0, x1, y1 inclusive; by default
+    ``result.occ_box``). One that does can hold the backdrop, which is in every frame with the
+    frame's box whatever the objects do: a cluster that has it over some frames, and an
+    object's patterns over others, is seen on an object only in the others.
+    """
     rows, owner = result.rows_of(patterns)
+    if view is not None:
+        box = (result.occ_box if boxes is None else boxes)[rows].astype(float)
+        whole = ~reaches_border(np.column_stack([box[:, :2], box[:, 2:] - box[:, :2] + 1]), *view, margin=0.0)
+        rows, owner = rows[whole], owner[whole]
     frames = result.occ_frame[rows].astype(np.int64)
-    n_frames = int(frames.max()) + 1 if frames.size else 1
+    n_frames = int(result.occ_frame.max()) + 1 if result.occ_frame.size else 1
     sightings = np.unique(labels[owner].astype(np.int64) * n_frames + frames)
     return np.bincount(sightings // n_frames, minlength=int(labels.max()) + 1 if labels.size else 0)
 

@@ -139,6 +139,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         labels = whole_patterns_apart(mined, clustered, labels, width, height)
     summary = summarise(labels, sub_paths, occurrences, n_frames)
     moving = None
+    region_boxes = mined.occ_box  # each occurrence's, as its cluster places it (with the backdrop or without)
     if robust and params.min_speed > 0:
         def moving_clusters(result: MiningResult, paths_summary: ClusterSummary, against: np.ndarray,
                             steady: np.ndarray, in_hops: np.ndarray) -> np.ndarray:
@@ -181,8 +182,9 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                 moving |= seen_without_backdrop(moving)
                 sub_paths = _with_paths(sub_paths, apart, free_paths)
                 summary = summarise(labels, sub_paths, occurrences, n_frames)
+                region_boxes = _with_boxes(mined, free, clustered[apart])
     own_frames = robust and params.own_frames
-    seen = seen_frames(mined, clustered, labels) if own_frames else None
+    seen = seen_frames(mined, clustered, labels, (width, height), region_boxes) if own_frames else None
 
     def selection(eligible: np.ndarray | None) -> list[int]:
         return select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
@@ -226,6 +228,15 @@ def _pattern_motion(observed: ObservedPaths, transforms: np.ndarray, n_patterns:
     median, mean, in_hops = world_steps(observed, transforms, n_patterns, hop=hop)
     unsteady = (median < params.steady_steps * speed) | (mean > speed / params.steady_steps)
     return speed, unsteady, in_hops
+
+
+def _with_boxes(result: MiningResult, placed: MiningResult, patterns: np.ndarray) -> np.ndarray:
+    """``result``'s occurrence boxes, with those of ``patterns`` from ``placed`` (the same
+    occurrences placed and boxed otherwise: without the backdrop)."""
+    boxes = result.occ_box.copy()
+    rows = placed.rows_of(patterns)[0]
+    boxes[rows] = placed.occ_box[rows]
+    return boxes
 
 
 def _with_paths(paths: Trajectories, rows: np.ndarray, others: Trajectories) -> Trajectories:

@@ -137,9 +137,10 @@ class TrapParams:
                                "there; look-alike tracks that traded objects where they met exchange their "
                                "continuations back")
     own_frames: bool = _p(True, "robust, n_objects = 0: clusters are ranked by the frames no kept cluster is near "
-                                "(not all their frames), and a cluster left out as near one kept cluster lends its "
-                                "track the frames it lacks (same object, usual size, no other track's box, none while "
-                                "the object is out of the view)")
+                                "(not all their frames), must be seen (occurrences whose regions do not reach the "
+                                "view's edge) in min_track_length of the video, and a cluster left out as near one "
+                                "kept cluster lends its track the frames it lacks (same object, usual size, no other "
+                                "track's box, none while the object is out of the view)")
     to_border: bool = _p(True, "robust: a track that ends (starts) at the image border is continued while its object, "
                                "moving as over its last (first) tau/2 frames fully in view, is partly visible")
     groups: bool = _p(True, "robust: where tracks' boxes merge, each gets its usual size at its side of the pair, "

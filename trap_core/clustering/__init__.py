@@ -6,8 +6,8 @@ from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns
 from trap_core.clustering.selection import ClusterSummary, seen_frames, select_clusters, summarise, twin_clusters
 from trap_core.clustering.tracks import (FrameCores, Track, box_centres, box_containment, box_iou, box_path,
                                         build_track, centre_inside, centre_path, centre_steps, core_regions,
-                                        frame_cores, in_rows, one_place, reaches_border, track_pieces,
-                                        usual_size, with_frames)
+                                        frame_cores, in_rows, one_place, reaches_border, region_boxes_reach_border,
+                                        track_pieces, usual_size, with_frames)
 from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
 
 __all__ = [
@@ -36,6 +36,7 @@ __all__ = [
     "observed_paths",
     "one_place",
     "reaches_border",
+    "region_boxes_reach_border",
     "pattern_distances",
     "seen_frames",
     "select_clusters",

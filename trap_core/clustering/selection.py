@@ -6,7 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from trap_core.clustering._kernels import cluster_sums
-from trap_core.clustering.tracks import reaches_border
+from trap_core.clustering.tracks import region_boxes_reach_border
 from trap_core.clustering.trajectory import Trajectories
 from trap_core.mining import MiningResult
 
@@ -63,8 +63,7 @@ def seen_frames(result: MiningResult, patterns: np.ndarray, labels: np.ndarray,
     """
     rows, owner = result.rows_of(patterns)
     if view is not None:
-        box = (result.occ_box if boxes is None else boxes)[rows].astype(float)
-        whole = ~reaches_border(np.column_stack([box[:, :2], box[:, 2:] - box[:, :2] + 1]), *view, margin=0.0)
+        whole = ~region_boxes_reach_border((result.occ_box if boxes is None else boxes)[rows], *view, margin=0.0)
         rows, owner = rows[whole], owner[whole]
     frames = result.occ_frame[rows].astype(np.int64)
     n_frames = int(result.occ_frame.max()) + 1 if result.occ_frame.size else 1

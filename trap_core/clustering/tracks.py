@@ -129,6 +129,15 @@ def reaches_border(boxes: np.ndarray, width: float, height: float, margin: float
     return (x <= reach_x) | (y <= reach_y) | (x + w >= width - reach_x) | (y + h >= height - reach_y)
 
 
+def region_boxes_reach_border(boxes: np.ndarray, width: float, height: float, margin: float = 0.25,
+                              shift: np.ndarray | None = None) -> np.ndarray:
+    """:func:`reaches_border` of region boxes ``(x0, y0, x1, y1)`` inclusive (N, 4; whole pixels,
+    as an occurrence's ``occ_box``), moved by ``shift`` (N, 2) px where given."""
+    box = np.asarray(boxes, dtype=float)
+    corner = box[:, :2] if shift is None else box[:, :2] + shift
+    return reaches_border(np.column_stack([corner, box[:, 2:] - box[:, :2] + 1]), width, height, margin)
+
+
 def _intersection(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``a`` and ``b`` as float arrays, and the area their boxes share (broadcast)."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)

@@ -33,7 +33,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy import sparse
 
-from trap_core.clustering import ClusterSummary, Trajectories, reaches_border, summarise
+from trap_core.clustering import ClusterSummary, Trajectories, region_boxes_reach_border, summarise
 from trap_core.mining import MiningResult
 from trap_core.robust._kernels import companions_apart, cut_counts, group_distances, mean_pair_distances
 from trap_core.robust.camera import map_points
@@ -264,8 +264,8 @@ def _flag_near(labels: np.ndarray, pattern_edge: np.ndarray, cluster_edge: np.nd
 def border_contacts(result: MiningResult, patterns: np.ndarray, width: int, height: int,
                     margin: float = 0.25, lag: int = 1, reach: int = 0) -> BorderContacts:
     """Per spatio-temporal pattern of ``patterns``: whether it enters the view (its first
-    occurrence box reaches the image border, :func:`reaches_border`, and its ``lag``-th is
-    further from the border) and whether it leaves it (its last reaches the border and its
+    occurrence box reaches the image border, :func:`trap_core.clustering.region_boxes_reach_border`,
+    and its ``lag``-th is further from the border) and whether it leaves it (its last reaches the border and its
     ``lag``-th from the end was further). A pattern that starts at the border as its object
     goes out (the border cuts new structures out of it) does not enter. Then whether it may
     have come from the border and whether it may be going to it: as entering and leaving, or,
@@ -277,13 +277,13 @@ def border_contacts(result: MiningResult, patterns: np.ndarray, width: int, heig
     earlier = np.maximum(stop - lag, begin)
     rows = [result.st_rows[k] for k in (begin, later, stop, earlier)]
     first, after, last, before = (_border_distance(result, r, width, height) for r in rows)
-    starts_at, ends_at = (_occurrences_reach_border(result, rows[k], width, height, margin) for k in (0, 2))
+    starts_at, ends_at = (region_boxes_reach_border(result.occ_box[rows[k]], width, height, margin) for k in (0, 2))
     enters = starts_at & (after > first)
     leaves = ends_at & (before > last)
-    from_border = enters | (~starts_at & _occurrences_reach_border(
-        result, rows[0], width, height, margin, shift=_drift(result, rows[1], rows[0]) * reach))
-    to_border = leaves | (~ends_at & _occurrences_reach_border(
-        result, rows[2], width, height, margin, shift=_drift(result, rows[3], rows[2]) * reach))
+    from_border = enters | (~starts_at & region_boxes_reach_border(
+        result.occ_box[rows[0]], width, height, margin, shift=_drift(result, rows[1], rows[0]) * reach))
+    to_border = leaves | (~ends_at & region_boxes_reach_border(
+        result.occ_box[rows[2]], width, height, margin, shift=_drift(result, rows[3], rows[2]) * reach))
     return BorderContacts(enters, leaves, from_border, to_border)
 
 
@@ -340,12 +340,3 @@ def _cut_share(labels: np.ndarray, cut: np.ndarray, occurrences: np.ndarray) -> 
     """Per cluster 0..max of ``labels`` (one per pattern): the share of its patterns' ``occurrences``
     that are ``cut`` (0 for a cluster with none)."""
     return np.bincount(labels, weights=cut) / np.maximum(np.bincount(labels, weights=occurrences), 1)
-
-
-def _occurrences_reach_border(result: MiningResult, rows: np.ndarray, width: float, height: float,
-                              margin: float, shift: np.ndarray | None = None) -> np.ndarray:
-    """:func:`reaches_border` of occurrences ``rows`` (their region boxes are x0, y0, x1, y1
-    inclusive), moved by ``shift`` (N, 2) px."""
-    box = result.occ_box[rows].astype(float)
-    corner = box[:, :2] if shift is None else box[:, :2] + shift
-    return reaches_border(np.column_stack([corner, box[:, 2:] - box[:, :2] + 1]), width, height, margin)

@@ -79,8 +79,8 @@ def main() -> None:
         paper, robust = (_best_time(graphs, params[method], args.repeat) for method in ("paper", "robust"))
         row = f"| {label} | {paper:.2f} | {robust:.2f} | {robust / paper:.2f} |"
         if args.graphs:
-            config, compressed = quality._scene_config(scene)
-            frames = list(synthetic_frames(config, compressed))  # rendered, and compressed where the scene is
+            config, delivery = quality._scene_config(scene)
+            frames = list(synthetic_frames(config, **delivery))  # rendered, compressed or encoded as the scene says
             graphs_paper, graphs_robust = (_graph_seconds(frames, params[method], args.graph_repeat)
                                            for method in ("paper", "robust"))
             row += (f" {graphs_paper:.2f} | {graphs_robust:.2f} |"

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Benchmark: tracking quality of the defaults on synthetic videos with ground truth.
 
-Eighteen sets of videos (721 frames but in the last three; ``trap_core.synthetic.SceneConfig``):
+Nineteen sets of videos (721 frames but in the last four; ``trap_core.synthetic.SceneConfig``):
 the Anim analogues (both presets, seeds 0-2), the variants looked at while the robust rules were
 chosen ("tuned"), variants never looked at while choosing them ("held-out"), frames larger than
 the working size ("larger", segmented scaled down to ``max_side``), a camera that also turns and
@@ -14,13 +14,15 @@ random after every rule ("blind"), other scenes: photographs as backgrounds ("ph
 over cells, a road and photographs after every rule but the two look-alike ones, the first of
 which was made on it ("drawn"), one drawn at random over every background and size, segmented with
 Felzenszwalb ("random"), and one more drawn so once the camera's motion was read from the images
-("after"), and one whose frames are JPEG-compressed, as a CompressedImage topic brings them
-("jpeg"). Prints, per video, the tracks found without being told the number of objects, each
-object's box precision/recall (%) and MOTA / IDF1 / HOTA; per set, the mean precision x recall,
-the share of objects at 90/90 or better and the mean MOTA / IDF1, and that share over all sets
-run; with ``--pictures DIR``, each video's tracks as a contact sheet and a timeline. Graphs are
-cached (``--cache``), so a second run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,after,jpeg] [-p name:=value]``
+("after"), one whose frames are JPEG-compressed, as a CompressedImage topic brings them
+("jpeg"), and one drawn at random after every rule whose frames reach the tracker as the bag
+encodings drawn with them do: raw (bgra8, yuv422, rgb8) or JPEG ("encoded"). Prints, per video,
+the tracks found without being told the number of objects, each object's box precision/recall
+(%) and MOTA / IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90
+or better and the mean MOTA / IDF1, and that share over all sets run; with ``--pictures DIR``,
+each video's tracks as a contact sheet and a timeline. Graphs are cached (``--cache``), so a
+second run only tracks.
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,jpeg,encoded] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
@@ -319,13 +321,48 @@ JPEG = [  # every frame compressed as JPEG (quality 90) and decoded, as a Compre
          dict(seed=38, shape="mixed", noise=1.0, background="chelsea", width=960, height=540)),
     ]
 ]
+ENCODED = [  # drawn at random (generator 5151) after every rule (session 51), written as bags by make_synthetic in
+    # the encodings drawn with them (raw or JPEG), tracked as they came; no rule made or checked on them
+    (f"{label}, {delivery}", dict(frames=frames, **scene, **({"compressed": "jpeg"} if delivery == "JPEG"
+                                                             else {"encoding": delivery})), "felzenszwalb")
+    for label, frames, delivery, scene in [
+        ("identical, person, 2 objects, 960x540, 400 frames, noise 2, coffee", 400, "bgra8",
+         dict(seed=6101, identical=True, shape="person", objects=2, width=960, height=540, noise=2.0,
+              background="coffee")),
+        ("identical, mixed shapes, 2 objects, 960x540, 400 frames, noise 0.5, hubble_deep_field", 400, "JPEG",
+         dict(seed=6102, identical=True, shape="mixed", objects=2, width=960, height=540, noise=0.5,
+              background="hubble_deep_field")),
+        ("identical, mixed shapes, 4 objects, 640x360, 300 frames, noise 1, gravel", 300, "rgb8",
+         dict(seed=6103, identical=True, shape="mixed", objects=4, width=640, height=360, noise=1.0,
+              background="gravel")),
+        ("distinct, car, 4 objects, 960x540, 500 frames, zoom 10 %, noise 0.5, brick", 500, "JPEG",
+         dict(seed=6104, shape="car", objects=4, width=960, height=540, noise=0.5, zoom=0.1, background="brick")),
+        ("distinct, person, 3 objects, 640x360, 400 frames, noise 1.5, grass", 400, "yuv422",
+         dict(seed=6105, shape="person", objects=3, width=640, height=360, noise=1.5, background="grass")),
+        ("distinct, person, 4 objects, 800x600, 400 frames, noise 1.5, colorwheel", 400, "rgb8",
+         dict(seed=6106, shape="person", objects=4, width=800, height=600, noise=1.5, background="colorwheel")),
+        ("distinct, car, 2 objects, 640x360, 400 frames, zoom 10 %, turn 8 deg, noise 2, immunohistochemistry", 400,
+         "JPEG", dict(seed=6107, shape="car", objects=2, width=640, height=360, noise=2.0, zoom=0.1, rotation=8.0,
+                      background="immunohistochemistry")),
+        ("distinct, person, 5 objects, 640x360, 500 frames, zoom 10 %, noise 2, astronaut", 500, "rgb8",
+         dict(seed=6108, shape="person", objects=5, width=640, height=360, noise=2.0, zoom=0.1,
+              background="astronaut")),
+        ("identical, disc, 4 objects, 640x360, 300 frames, turn 8 deg, noise 1, immunohistochemistry", 300, "JPEG",
+         dict(seed=6109, identical=True, shape="disc", objects=4, width=640, height=360, noise=1.0, rotation=8.0,
+              background="immunohistochemistry")),
+        ("identical, person, 2 objects, 640x480, 400 frames, zoom 10 %, turn 8 deg, noise 2, rocket", 400, "JPEG",
+         dict(seed=6110, identical=True, shape="person", objects=2, width=640, height=480, noise=2.0, zoom=0.1,
+              rotation=8.0, background="rocket")),
+    ]
+]
 MAX_KEY = 200  # characters of a cached video's file name (scenes with many settings have longer keys)
 # Graph parameters with no effect on exact-colour regions.
 FELZENSZWALB_ONLY = ("k", "max_regions", "sigma", "min_size", "threshold", "connectivity", "mean_gap")
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
         "shapes": SHAPES, "recent": RECENT, "fresh": FRESH,
         "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST, "unseen": UNSEEN, "blind": BLIND,
-        "photos": PHOTOS, "drawn": DRAWN, "random": RANDOM, "after": AFTER, "jpeg": JPEG}
+        "photos": PHOTOS, "drawn": DRAWN, "random": RANDOM, "after": AFTER, "jpeg": JPEG,
+        "encoded": ENCODED}
 
 
 def _code_digest(function, seen: set | None = None) -> str:
@@ -370,19 +407,20 @@ def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None 
     if path.exists():
         with open(path, "rb") as f:
             return pickle.load(f)
-    config, compressed = _scene_config(scene)
-    graphs, truth = synthetic_graphs(config, params, compressed)
+    config, delivery = _scene_config(scene)
+    graphs, truth = synthetic_graphs(config, params, **delivery)
     cache.mkdir(parents=True, exist_ok=True)
     with open(path, "wb") as f:
         pickle.dump((graphs, truth), f)
     return graphs, truth
 
 
-def _scene_config(scene: dict) -> tuple[SceneConfig, str | None]:
-    """The video of a set's ``scene`` and how its frames are compressed (its ``compressed`` key)."""
+def _scene_config(scene: dict) -> tuple[SceneConfig, dict[str, str]]:
+    """The video of a set's ``scene`` and how its frames reach the tracker: its ``compressed``
+    and ``encoding`` keys, as keyword arguments of :func:`synthetic_graphs`."""
     settings = dict(scene)
-    compressed = settings.pop("compressed", None)
-    return SceneConfig(**settings), compressed
+    delivery = {key: settings.pop(key) for key in ("compressed", "encoding") if key in settings}
+    return SceneConfig(**settings), delivery
 
 
 def _pictures(scene: dict, tracks: list[Track], n_frames: int, stem: Path) -> None:

@@ -126,6 +126,26 @@ def test_written_bag_and_ground_truth_agree(tmp_path: Path) -> None:
     assert 1.0 < np.abs(first.astype(int) - clean.rgb).mean() < 30  # noise and jpeg, same scene
 
 
+
+@pytest.mark.parametrize("delivery", [{"encoding": "yuv422"}, {"encoding": "bayer_rggb8"}, {"encoding": "bgra8"},
+                                      {"compressed": "jpeg"}])
+def test_frames_made_in_memory_are_those_a_bag_of_the_encoding_brings(tmp_path: Path, delivery: dict) -> None:
+    """The quality benchmark tracks frames encoded and decoded in memory, not read from a bag:
+    they must be the very pixels a bag written in that encoding gives back (a Bayer pattern's
+    demosaicing, yuv422's shared colour of two columns, JPEG's losses)."""
+    from trap_core.pipeline import synthetic_frames
+    cfg = SceneConfig(width=160, height=120, frames=5, seed=8, noise=1.0, shape="person")
+    bag, _ = write_synthetic(cfg, tmp_path / "bag", **delivery)
+    with open_image_stream(bag) as stream:
+        from_bag = [frame.rgb for frame in stream]
+    in_memory = list(synthetic_frames(cfg, **delivery))
+    assert len(in_memory) == len(from_bag) == 5
+    for mine, theirs in zip(in_memory, from_bag):
+        np.testing.assert_array_equal(mine, theirs)
+    rendered = next(iter(render(cfg))).rgb
+    lossless = delivery.get("encoding") == "bgra8"
+    assert np.array_equal(in_memory[0], rendered) == lossless
+
 def test_bad_configs_are_refused() -> None:
     with pytest.raises(ValueError, match="too small"):
         SceneConfig(width=10, height=10)

@@ -14,7 +14,7 @@ from concurrent.futures import Future, ThreadPoolExecutor
 import cv2
 import numpy as np
 
-from trap_core.bagio import compress_image, decode_compressed
+from trap_core.bagio import compress_image, decode_compressed, decode_image, encode_image
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, build_plane_graph
 from trap_core.robust.image_steps import image_step
@@ -209,24 +209,37 @@ def graphs_of(frames: Iterable[np.ndarray], params: TrapParams,
         raise failure
 
 
-def synthetic_graphs(config: SceneConfig, params: TrapParams, compressed: str | None = None,
+def synthetic_graphs(config: SceneConfig, params: TrapParams, compressed: str | None = None, encoding: str = "rgb8",
                      ) -> tuple[list[PlaneGraph], list[dict[int, tuple]]]:
     """Plane graphs of a synthetic video and each object's ground-truth boxes (frame -> x, y, w,
     h): what tests and quality benchmarks track and score, without writing a bag. ``compressed``
     (``jpeg`` or ``png``): each frame is compressed and decoded first, as a bag of
-    ``sensor_msgs/CompressedImage`` would bring it."""
+    ``sensor_msgs/CompressedImage`` would bring it; else ``encoding``: each frame is encoded so and
+    decoded, as a ``sensor_msgs/Image`` of that encoding would bring it (``yuv422`` halves the
+    colour's resolution across, a Bayer pattern keeps one colour a pixel)."""
     truth: list[dict[int, tuple]] = [{} for _ in range(config.objects)]
-    return list(graphs_of(synthetic_frames(config, compressed, truth), params)), truth
+    return list(graphs_of(synthetic_frames(config, compressed, truth, encoding), params)), truth
 
 
 def synthetic_frames(config: SceneConfig, compressed: str | None = None,
-                     truth: list[dict[int, tuple]] | None = None) -> Iterator[np.ndarray]:
-    """The RGB frames of a synthetic video, each compressed and decoded first where
-    ``compressed`` (as :func:`synthetic_graphs` takes them); each object's box in each frame is
-    written into ``truth`` (one dict per object) when given."""
+                     truth: list[dict[int, tuple]] | None = None, encoding: str = "rgb8") -> Iterator[np.ndarray]:
+    """The RGB frames of a synthetic video, each compressed (or encoded) and decoded first as
+    :func:`synthetic_graphs` takes them; each object's box in each frame is written into
+    ``truth`` (one dict per object) when given."""
     for frame in render(config):
         if truth is not None:
             for obj, box in enumerate(frame.boxes):
                 if box:
                     truth[obj][frame.index] = box
-        yield frame.rgb if compressed is None else decode_compressed(compressed, compress_image(frame.rgb, compressed))
+        yield _as_delivered(frame.rgb, compressed, encoding)
+
+
+def _as_delivered(rgb: np.ndarray, compressed: str | None, encoding: str) -> np.ndarray:
+    """``rgb`` as a subscriber decodes it from a message: compressed as ``compressed``, or in the
+    raw ``encoding``."""
+    if compressed is not None:
+        return decode_compressed(compressed, compress_image(rgb, compressed))
+    if encoding.lower() == "rgb8":
+        return rgb
+    payload, step = encode_image(rgb, encoding)
+    return decode_image(encoding, rgb.shape[0], rgb.shape[1], step, payload)

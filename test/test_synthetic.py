@@ -126,7 +126,6 @@ def test_written_bag_and_ground_truth_agree(tmp_path: Path) -> None:
     assert 1.0 < np.abs(first.astype(int) - clean.rgb).mean() < 30  # noise and jpeg, same scene
 
 
-
 @pytest.mark.parametrize("delivery", [{"encoding": "yuv422"}, {"encoding": "bayer_rggb8"}, {"encoding": "bgra8"},
                                       {"compressed": "jpeg"}])
 def test_frames_made_in_memory_are_those_a_bag_of_the_encoding_brings(tmp_path: Path, delivery: dict) -> None:

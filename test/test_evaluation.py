@@ -1,4 +1,5 @@
-"""The paper's measures, the best cluster over every cut, baselines and the evaluate report."""
+"""The paper's measures, the best cluster over every cut, baselines, the evaluate report and the
+segmentation's leak of objects into the background."""
 from __future__ import annotations
 
 import json
@@ -8,11 +9,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from trap_core.evaluation import box_precision_recall, cluster_precision_recall
+from trap_core.evaluation import box_precision_recall, cluster_precision_recall, leaked_pixels
 from trap_core.evaluation.baselines import run_baselines
 from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores
-from trap_core.pipeline import TrapParams, synthetic_graphs, track
-from trap_core.synthetic import SceneConfig, render, write_synthetic
+from trap_core.pipeline import TrapParams, delivered_frames, frame_regions, synthetic_graphs, track
+from trap_core.synthetic import PRESETS, SceneConfig, render, write_synthetic
 
 
 def test_box_measures() -> None:
@@ -20,6 +21,27 @@ def test_box_measures() -> None:
     track = {0: (0, 0, 10, 10), 1: (5, 0, 10, 10)}  # frame 1: half inside, centre (10, 5) on the edge
     precision, recall = box_precision_recall(track, truth)
     assert precision == pytest.approx((100 + 50) / 200) and recall == pytest.approx(2 / 3)
+
+
+def test_leaked_pixels_are_object_pixels_in_regions_mostly_of_background() -> None:
+    labels = np.array([[0, 0, 0, 1, 1],
+                       [0, 0, 0, 1, 2]])
+    owner = np.array([[-1, -1, -1, 0, 0],  # region 0: 5 background pixels, 1 object pixel: leaked
+                      [-1, -1, 0, -1, 1]])  # region 1: 2 object, 1 background; region 2: 1 object
+    assert leaked_pixels(labels, 3, owner) == (1, 4)
+    assert leaked_pixels(labels, 4, owner) == (1, 4)  # a region with no pixel changes nothing
+
+
+def test_jpeg_leaks_an_object_into_the_cells_that_lossless_frames_keep_apart() -> None:
+    """README, compressed frames: JPEG's colour ramps let a region climb into the ground."""
+    params = TrapParams(segmentation="felzenszwalb")
+    shares = {}
+    for compressed in (None, "jpeg"):
+        frame = next(delivered_frames(SceneConfig(frames=1, seed=0, **PRESETS["anim1"]), compressed=compressed))
+        labels, count = frame_regions(frame.rgb, params)
+        leaked, total = leaked_pixels(labels, count, frame.owner)
+        shares[compressed] = leaked / total
+    assert shares[None] < 0.01 and shares["jpeg"] > 0.05
 
 
 @pytest.fixture(scope="module")

@@ -12,23 +12,30 @@ from trap_core.synthetic import SceneConfig, build_world, render, write_syntheti
 from trap_core.synthetic.cli import build_parser
 
 
-def _colour_box(rgb: np.ndarray, colours: np.ndarray) -> tuple[int, int, int, int] | None:
+def _colour_mask(rgb: np.ndarray, colours: np.ndarray) -> np.ndarray:
     mask = np.zeros(rgb.shape[:2], dtype=bool)
     for colour in colours:
         mask |= np.all(rgb == colour, axis=-1)
+    return mask
+
+
+def _colour_box(rgb: np.ndarray, colours: np.ndarray) -> tuple[int, int, int, int] | None:
+    mask = _colour_mask(rgb, colours)
     if not mask.any():
         return None
     rows, cols = np.flatnonzero(mask.any(axis=1)), np.flatnonzero(mask.any(axis=0))
     return int(cols[0]), int(rows[0]), int(cols[-1] - cols[0] + 1), int(rows[-1] - rows[0] + 1)
 
 
-def test_ground_truth_is_the_box_of_visible_pixels() -> None:
+def test_ground_truth_is_the_box_and_the_mask_of_visible_pixels() -> None:
     cfg = SceneConfig(width=320, height=240, frames=300, seed=5)
     colours = build_world(cfg).object_colours
     checked = 0
     for frame in render(cfg):
+        assert frame.owner.shape == frame.rgb.shape[:2]
         for obj, box in enumerate(frame.boxes):
             assert box == _colour_box(frame.rgb, colours[obj]), f"frame {frame.index} object {obj}"
+            assert np.array_equal(frame.owner == obj, _colour_mask(frame.rgb, colours[obj])), f"frame {frame.index}"
             checked += box is not None
     assert checked > 600
 

@@ -19,7 +19,7 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, build_plane_graph
 from trap_core.robust.image_steps import image_step
 from trap_core.segmentation import SegmentationError, colour_components, felzenszwalb
-from trap_core.synthetic import SceneConfig, render
+from trap_core.synthetic import RenderedFrame, SceneConfig, render
 
 FEW_REGIONS = 40  # a first frame with fewer Felzenszwalb regions than this gets a warning (first_frame_setup)
 MAX_K = 1e4  # fitting never raises Felzenszwalb's k beyond this: every colour step of a frame merges long before
@@ -46,6 +46,13 @@ def frame_graph(rgb: np.ndarray, params: TrapParams, previous: np.ndarray | None
     if small is not rgb:
         graph = _in_frame_pixels(graph, width / small.shape[1], height / small.shape[0])
     return graph if previous is None else dataclasses.replace(graph, camera_step=image_step(previous, rgb))
+
+
+def frame_regions(rgb: np.ndarray, params: TrapParams) -> tuple[np.ndarray, int]:
+    """Region label of each pixel of ``rgb`` at the size it is segmented (:func:`frame_graph`:
+    longer side at ``params.max_side``), and their count: what the plane graph is built on, for
+    measures of the segmentation itself (``benchmarks/region_leak.py``)."""
+    return _regions(_working_size(rgb, params), params)
 
 
 def fitted_to_regions(rgb: np.ndarray, params: TrapParams) -> TrapParams:
@@ -84,7 +91,7 @@ def first_frame_setup(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, 
         Exact-colour regions on such a frame (one line, naming the way out).
     """
     if params.segmentation == "colour" and params.max_regions:
-        count = _regions(_working_size(rgb, params), params)[1]
+        count = frame_regions(rgb, params)[1]
         if count > COLOUR_EXCESS * params.max_regions:
             raise SegmentationError(
                 f"segmentation colour: the first frame has {count} exact-colour regions (limit {COLOUR_EXCESS} x "
@@ -226,12 +233,20 @@ def synthetic_frames(config: SceneConfig, compressed: str | None = None,
     """The RGB frames of a synthetic video, each compressed (or encoded) and decoded first as
     :func:`synthetic_graphs` takes them; each object's box in each frame is written into
     ``truth`` (one dict per object) when given."""
-    for frame in render(config):
+    for frame in delivered_frames(config, compressed, encoding):
         if truth is not None:
             for obj, box in enumerate(frame.boxes):
                 if box:
                     truth[obj][frame.index] = box
-        yield _as_delivered(frame.rgb, compressed, encoding)
+        yield frame.rgb
+
+
+def delivered_frames(config: SceneConfig, compressed: str | None = None, encoding: str = "rgb8",
+                     ) -> Iterator[RenderedFrame]:
+    """The frames of a synthetic video with their ground truth (boxes and each pixel's object),
+    their pixels compressed (or encoded) and decoded first as :func:`synthetic_frames` gives them."""
+    for frame in render(config):
+        yield dataclasses.replace(frame, rgb=_as_delivered(frame.rgb, compressed, encoding))
 
 
 def _as_delivered(rgb: np.ndarray, compressed: str | None, encoding: str) -> np.ndarray:

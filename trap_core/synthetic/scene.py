@@ -265,11 +265,14 @@ def build_world(cfg: SceneConfig) -> _World:
 
 @dataclass(frozen=True)
 class RenderedFrame:
-    """A frame and its ground truth: ``boxes[obj] = (x, y, w, h)`` of visible pixels, or None."""
+    """A frame and its ground truth: ``boxes[obj] = (x, y, w, h)`` of visible pixels, or None, and
+    ``owner``, the object each pixel shows (H, W; -1: the background), for measures of how a
+    segmentation cuts the objects apart from the background (``benchmarks/region_leak.py``)."""
 
     index: int
     rgb: np.ndarray
     boxes: tuple[tuple[int, int, int, int] | None, ...]
+    owner: np.ndarray
 
 
 def _stamp(parts: tuple, size: tuple[int, int]) -> np.ndarray:
@@ -324,7 +327,7 @@ def render(cfg: SceneConfig) -> Iterator[RenderedFrame]:
             if cfg.noise:
                 shaded += noise_rng.normal(0, cfg.noise, size=frame.shape).astype(np.float32)
             frame = np.clip(np.rint(shaded), 0, 255).astype(np.uint8)
-        yield RenderedFrame(t, frame, boxes)
+        yield RenderedFrame(t, frame, boxes, owner)
 
 
 def _turned_view(world: np.ndarray, cx: int, cy: int, width: int, height: int, cfg: SceneConfig,

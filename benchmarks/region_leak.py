@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""Benchmark: how much of the objects the segmentation merges into the background.
+
+TRAP sees an object only through its regions: a part of an object that Felzenszwalb's rule
+merges with the ground around it belongs to no pattern of the object, and its box cannot take
+it in. Compressed frames leak most (README, "Compressed frames (JPEG)"): colour edges become
+ramps that a region climbs one small step at a time. For each Felzenszwalb video of the
+chosen ``quality.py`` sets, frames reach the segmentation as they reach the tracker (compressed
+or encoded as the set says, or as rendered with ``--rendered``), ``k`` is fitted on the first
+frame as a run fits it (``max_regions``), and on ``--frames`` frames spread over the video each
+region is given to what most of its pixels show: an object or the background. The object
+pixels in regions given to the background have leaked. Prints, per video, the ``k`` used, the
+regions a frame and the leaked share of object pixels; then over all videos.
+Run: ``.venv/bin/python benchmarks/region_leak.py [--sets jpeg,encoded] [--rendered] [-p mean_gap:=5.0]``
+(~10 s a video: every frame up to the last measured is rendered and delivered).
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+import cv2
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import quality  # noqa: E402  (the benchmark sets)
+
+from trap_core.cli import parameter_assignment  # noqa: E402
+from trap_core.evaluation import leaked_pixels  # noqa: E402
+from trap_core.pipeline import TrapParams, delivered_frames, first_frame_setup, frame_regions  # noqa: E402
+
+
+def video_leak(scene: dict, params: TrapParams, frames: int, rendered: bool) -> tuple[float, float, int, int]:
+    """``k`` fitted on the first frame, the mean regions a frame, and the leaked and all object
+    pixels over ``frames`` frames spread over the video (the first one left out: it fits ``k``)."""
+    config, delivery = quality._scene_config(scene)
+    if rendered:
+        delivery = {}
+    measured = set(np.linspace(0, config.frames - 1, frames + 2).round().astype(int)[1:-1].tolist())
+    leaked = total = 0
+    counts = []
+    for frame in delivered_frames(config, **delivery):
+        if frame.index == 0:
+            params = first_frame_setup(frame.rgb, params)[0]
+        if frame.index not in measured:
+            continue
+        labels, count = frame_regions(frame.rgb, params)
+        owner = cv2.resize(frame.owner, labels.shape[::-1], interpolation=cv2.INTER_NEAREST)
+        frame_leaked, frame_total = leaked_pixels(labels, count, owner)
+        leaked, total, counts = leaked + frame_leaked, total + frame_total, counts + [count]
+        if frame.index == max(measured):
+            break
+    return params.k, float(np.mean(counts)), leaked, total
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sets", default="jpeg", help="comma-separated: " + ", ".join(quality.SETS))
+    parser.add_argument("--frames", type=int, default=3, help="frames measured a video, spread over it")
+    parser.add_argument("--rendered", action="store_true",
+                        help="the frames as rendered: no compression or encoding, whatever the set says")
+    parser.add_argument("-p", dest="overrides", action="append", default=[], type=parameter_assignment,
+                        metavar="NAME:=VALUE", help="a segmentation parameter (repeatable), as after ROS's -p")
+    args = parser.parse_args()
+    if args.frames < 1:
+        parser.error("--frames must be at least 1")
+    unknown = [name for name in args.sets.split(",") if name not in quality.SETS]
+    if unknown:
+        parser.error(f"unknown set {unknown[0]!r}: one of {', '.join(quality.SETS)}")
+    overrides = dict(args.overrides)
+    print("| set | video | k | regions a frame | object pixels leaked % |\n|---|---|---|---|---|")
+    leaked = total = 0
+    for set_name in args.sets.split(","):
+        for label, scene, segmentation in quality.SETS[set_name]:
+            if segmentation != "felzenszwalb":
+                continue  # exact-colour regions are the drawn colours: nothing leaks
+            params = TrapParams.from_mapping({"segmentation": segmentation, **overrides})
+            k, regions, video_leaked, video_total = video_leak(scene, params, args.frames, args.rendered)
+            print(f"| {set_name} | {label} | {k:g} | {regions:.0f} | {100 * video_leaked / max(video_total, 1):.1f} |",
+                  flush=True)
+            leaked, total = leaked + video_leaked, total + video_total
+    print(f"\nall videos: {100 * leaked / max(total, 1):.1f} % of object pixels leaked")
+
+
+if __name__ == "__main__":
+    main()

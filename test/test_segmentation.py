@@ -87,6 +87,56 @@ def test_regions_are_four_connected_and_compact() -> None:
     assert np.bincount(labels.ravel()).min() >= 50 or n == 1
 
 
+def _reference_segmentation(image: np.ndarray, k: float, min_size: int, connectivity: int) -> np.ndarray:
+    """The constant-threshold merge rule written plainly: edges in raster order (pixel, then
+    right, down, and for 8-connectivity the two diagonals), stably sorted by weight in 1/16
+    units; the larger component (the first on a tie) keeps its root."""
+    height, width, _ = image.shape
+    offsets = [(0, 1), (1, 0), (1, 1), (1, -1)][:2 if connectivity == 4 else 4]
+    edges = []
+    for y in range(height):
+        for x in range(width):
+            for dy, dx in offsets:
+                if y + dy < height and 0 <= x + dx < width:
+                    weight = np.float32(np.sqrt(np.sum((image[y, x] - image[y + dy, x + dx]) ** 2, dtype=np.float64)))
+                    edges.append((int(weight * 16), y * width + x, (y + dy) * width + x + dx, weight))
+    edges.sort(key=lambda edge: edge[0])  # stable: raster order within a bin
+    parent, size, internal = list(range(height * width)), [1] * (height * width), [np.float32(0)] * (height * width)
+
+    def root(node: int) -> int:
+        while parent[node] != node:
+            node = parent[node]
+        return node
+
+    def join(a: int, b: int) -> int:
+        if size[a] < size[b]:
+            a, b = b, a
+        parent[b] = a
+        size[a] += size[b]
+        return a
+    for _, p, q, weight in edges:
+        a, b = root(p), root(q)
+        if a != b and weight <= min(internal[a] + np.float32(k), internal[b] + np.float32(k)):
+            kept = join(a, b)
+            internal[kept] = max(weight, internal[a], internal[b])
+    for _, p, q, _ in edges:
+        a, b = root(p), root(q)
+        if a != b and (size[a] < min_size or size[b] < min_size):
+            join(a, b)
+    return np.array([root(p) for p in range(height * width)]).reshape(height, width)
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+def test_the_compiled_kernel_is_the_merge_rule_written_plainly(connectivity: int) -> None:
+    """Same roots, not just the same regions: edge order and tie-breaking are pinned down."""
+    rng = np.random.default_rng(connectivity)
+    for _ in range(3):
+        image = cv2.GaussianBlur(rng.integers(0, 256, (18, 23, 3)).astype(np.float32), (0, 0), 1.5)
+        image[:, :8] += 40  # a coloured block, so that some edges are far above k
+        expected = _reference_segmentation(image, 7.0, 5, connectivity)
+        assert np.array_equal(felzenszwalb_kernel(image, 7.0, 5, False, connectivity, 0.0), expected)
+
+
 def test_min_size_merges_small_regions() -> None:
     image = _natural("coffee")
     _, many = felzenszwalb(image, k=5, min_size=0)

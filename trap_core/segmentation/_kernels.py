@@ -15,70 +15,60 @@ _WEIGHT_BINS_PER_UNIT = 16
 
 @nb.njit(cache=True, nogil=True)
 def _find(parent: np.ndarray, node: int) -> int:
-    root = node
-    while parent[root] != root:
-        root = parent[root]
-    while parent[node] != root:  # path compression
-        nxt = parent[node]
-        parent[node] = root
-        node = nxt
-    return root
+    """Root of ``node``'s set, halving the path on the way (each node visited points to its
+    grandparent): one pass, where full compression takes two. The roots, hence the segmentation,
+    are the same either way."""
+    while parent[node] != node:
+        parent[node] = parent[parent[node]]
+        node = parent[node]
+    return node
 
 
 @nb.njit(cache=True, nogil=True)
-def _edges(image: np.ndarray, connectivity: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Pixel-pair edges and their Euclidean colour distance."""
+def _sorted_edges(image: np.ndarray, connectivity: int) -> tuple[np.ndarray, np.ndarray]:
+    """Pixel-pair edges in order of their Euclidean colour distance, and those distances.
+
+    An edge is coded as ``pixel * n_dirs + direction`` (``_OFFSETS``), one int32 where a pair of
+    pixel indices took two: the sort then moves a third less memory. Edges are ordered by a
+    counting sort on weights quantised to 1/16 unit, O(n), stable: edges of one bin keep
+    their raster order.
+    """
     height, width, channels = image.shape
     n_dirs = 2 if connectivity == 4 else 4
     capacity = height * width * n_dirs
-    a = np.empty(capacity, dtype=np.int32)
-    b = np.empty(capacity, dtype=np.int32)
-    w = np.empty(capacity, dtype=np.float32)
-    count = 0
-    for y in range(height):
-        for x in range(width):
-            for k in range(n_dirs):
-                ny = y + _OFFSETS[k, 0]
-                nx = x + _OFFSETS[k, 1]
-                if ny >= height or nx < 0 or nx >= width:
-                    continue
+    weight = np.empty(capacity, dtype=np.float32)
+    present = np.zeros(capacity, dtype=np.bool_)
+    top = np.float32(0.0)
+    for k in range(n_dirs):  # one direction at a time: its offsets and the pixels that have that neighbour are fixed
+        dy, dx = _OFFSETS[k, 0], _OFFSETS[k, 1]
+        for y in range(height - dy):
+            for x in range(max(0, -dx), width - max(0, dx)):
                 dist = 0.0
                 for c in range(channels):
-                    diff = image[y, x, c] - image[ny, nx, c]
+                    diff = image[y, x, c] - image[y + dy, x + dx, c]
                     dist += diff * diff
-                a[count] = y * width + x
-                b[count] = ny * width + nx
-                w[count] = np.sqrt(dist)
-                count += 1
-    return a[:count], b[:count], w[:count]
-
-
-@nb.njit(cache=True, nogil=True)
-def _sort_edges(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Edges in order of weight, O(n): counting sort on weights quantised to 1/16 unit.
-
-    The edge arrays themselves are permuted, so the merge loop then reads them sequentially.
-    """
-    top = 0.0
-    for value in w:
-        top = max(top, value)
+                value = np.float32(np.sqrt(dist))
+                edge = (y * width + x) * n_dirs + k
+                weight[edge] = value
+                present[edge] = True
+                top = max(top, value)
     n_bins = int(top * _WEIGHT_BINS_PER_UNIT) + 2
     counts = np.zeros(n_bins + 1, dtype=np.int64)
-    for value in w:
-        counts[int(value * _WEIGHT_BINS_PER_UNIT) + 1] += 1
+    for edge in range(capacity):
+        if present[edge]:
+            counts[int(weight[edge] * _WEIGHT_BINS_PER_UNIT) + 1] += 1
     for i in range(1, n_bins + 1):
         counts[i] += counts[i - 1]
-    sa = np.empty_like(a)
-    sb = np.empty_like(b)
-    sw = np.empty_like(w)
-    for i in range(w.size):
-        slot = int(w[i] * _WEIGHT_BINS_PER_UNIT)
-        j = counts[slot]
-        sa[j] = a[i]
-        sb[j] = b[i]
-        sw[j] = w[i]
-        counts[slot] += 1
-    return sa, sb, sw
+    codes = np.empty(counts[n_bins], dtype=np.int32)
+    weights = np.empty(counts[n_bins], dtype=np.float32)
+    for edge in range(capacity):
+        if present[edge]:
+            slot = int(weight[edge] * _WEIGHT_BINS_PER_UNIT)
+            j = counts[slot]
+            codes[j] = edge
+            weights[j] = weight[edge]
+            counts[slot] += 1
+    return codes, weights
 
 
 @nb.njit(cache=True, nogil=True)
@@ -102,7 +92,10 @@ def felzenszwalb_kernel(image: np.ndarray, k: float, min_size: int, size_thresho
     Returns a (H, W) int32 label image (not compacted).
     """
     height, width, channels = image.shape
-    a, b, w = _sort_edges(*_edges(image, connectivity))
+    codes, w = _sorted_edges(image, connectivity)
+    shift = 1 if connectivity == 4 else 2  # an edge's code: pixel << shift | direction
+    direction = (1 << shift) - 1
+    step = (_OFFSETS[:, 0] * width + _OFFSETS[:, 1]).astype(np.int32)  # neighbour's pixel index less the pixel's, per direction
     n = height * width
     parent = np.arange(n, dtype=np.int32)
     size = np.ones(n, dtype=np.int32)
@@ -112,8 +105,9 @@ def felzenszwalb_kernel(image: np.ndarray, k: float, min_size: int, size_thresho
     k32 = np.float32(k)
     distance_squared = max_mean_distance * max_mean_distance
     for idx in range(w.size):
-        ra = _find(parent, a[idx])
-        rb = _find(parent, b[idx])
+        pixel = codes[idx] >> shift
+        ra = _find(parent, pixel)
+        rb = _find(parent, pixel + step[codes[idx] & direction])
         if ra == rb:
             continue
         weight = w[idx]
@@ -133,8 +127,9 @@ def felzenszwalb_kernel(image: np.ndarray, k: float, min_size: int, size_thresho
             internal[ra] = max(weight, internal[ra], internal[rb])
     if min_size > 1:
         for idx in range(w.size):
-            ra = _find(parent, a[idx])
-            rb = _find(parent, b[idx])
+            pixel = codes[idx] >> shift
+            ra = _find(parent, pixel)
+            rb = _find(parent, pixel + step[codes[idx] & direction])
             if ra != rb and (size[ra] < min_size or size[rb] < min_size):
                 if size[ra] < size[rb]:
                     ra, rb = rb, ra

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from trap_core.evaluation import box_precision_recall, cluster_precision_recall, leaked_pixels
+from trap_core.evaluation import box_precision_recall, cluster_precision_recall, leaked_pixels, leaked_regions
 from trap_core.evaluation.baselines import run_baselines
 from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores
 from trap_core.pipeline import TrapParams, delivered_frames, frame_regions, synthetic_graphs, track
@@ -29,6 +29,7 @@ def test_leaked_pixels_are_object_pixels_in_regions_mostly_of_background() -> No
     owner = np.array([[-1, -1, -1, 0, 0],  # region 0: 5 background pixels, 1 object pixel: leaked
                       [-1, -1, 0, -1, 1]])  # region 1: 2 object, 1 background; region 2: 1 object
     assert leaked_pixels(labels, 3, owner) == (1, 4)
+    assert leaked_regions(labels, 3, owner).tolist() == [True, False, False]
     assert leaked_pixels(labels, 4, owner) == (1, 4)  # a region with no pixel changes nothing
 
 

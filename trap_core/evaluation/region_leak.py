@@ -10,9 +10,17 @@ from __future__ import annotations
 import numpy as np
 
 
+def leaked_regions(labels: np.ndarray, count: int, owner: np.ndarray) -> np.ndarray:
+    """(``count``,) whether each region of a frame segmented into ``labels`` is given to the
+    background: more of its pixels show the background than an object (a tie goes to the
+    objects). ``owner``: the object each pixel shows, -1 for the background."""
+    on_background, on_objects = _pixel_counts(labels, count, owner)
+    return on_background > on_objects
+
+
 def leaked_pixels(labels: np.ndarray, count: int, owner: np.ndarray) -> tuple[int, int]:
     """Object pixels of a frame segmented into ``labels`` (``count`` regions) that lie in regions
-    most of whose pixels show the background, and all its object pixels.
+    given to the background (:func:`leaked_regions`), and all its object pixels.
 
     Parameters
     ----------
@@ -27,9 +35,12 @@ def leaked_pixels(labels: np.ndarray, count: int, owner: np.ndarray) -> tuple[in
     Returns
     -------
     leaked, total : int
-        Object pixels in regions given to the background (more of their pixels are background
-        than object; a tie goes to the objects), and all object pixels.
+        Object pixels in regions given to the background, and all object pixels.
     """
-    on_background = np.bincount(labels[owner < 0], minlength=count)
-    on_objects = np.bincount(labels[owner >= 0], minlength=count)
+    on_background, on_objects = _pixel_counts(labels, count, owner)
     return int(on_objects[on_background > on_objects].sum()), int(on_objects.sum())
+
+
+def _pixel_counts(labels: np.ndarray, count: int, owner: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Background and object pixels of each region."""
+    return (np.bincount(labels[owner < 0], minlength=count), np.bincount(labels[owner >= 0], minlength=count))

@@ -41,7 +41,7 @@ from trap_core.cli import parameter_assignment
 from trap_core.evaluation import boxes_by_frame, match_objects, mot_measures
 from trap_core.clustering import Track
 from trap_core.outputs import Thumbnails, contact_sheet, track_timeline
-from trap_core.pipeline import GRAPH_STAGE, TrapParams, synthetic_graphs, track
+from trap_core.pipeline import GRAPH_STAGE, ParameterError, TrapParams, synthetic_graphs, track
 from trap_core.rag.serialize import MAGIC as GRAPH_MAGIC
 from trap_core.robust.image_steps import image_step
 from trap_core.synthetic import PRESETS, SceneConfig, render
@@ -437,6 +437,18 @@ def _pictures(scene: dict, tracks: list[Track], n_frames: int, stem: Path) -> No
     track_timeline(tracks, n_frames, f"{stem}_timeline.png")
 
 
+def check_arguments(parser: argparse.ArgumentParser, sets: str, overrides: list[tuple[str, object]]) -> None:
+    """End the run in one line (``parser.error``) on an unknown set or a bad parameter, before any
+    video is made, rather than with a traceback at the first video that reaches it."""
+    unknown = [name for name in sets.split(",") if name not in SETS]
+    if unknown:
+        parser.error(f"unknown set {unknown[0]!r}: one of {', '.join(SETS)}")
+    try:
+        TrapParams.from_mapping(dict(overrides))
+    except ParameterError as error:
+        parser.error(str(error))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sets", default=",".join(SETS), help="comma-separated: " + ", ".join(SETS))
@@ -446,6 +458,7 @@ def main() -> None:
     parser.add_argument("-p", dest="overrides", action="append", default=[], type=parameter_assignment,
                         metavar="NAME:=VALUE", help="parameter for every run (as process_bag's -p)")
     args = parser.parse_args()
+    check_arguments(parser, args.sets, args.overrides)
     all_good: list[bool] = []
     for name in args.sets.split(","):
         videos = SETS[name]

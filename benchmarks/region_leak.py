@@ -89,9 +89,7 @@ def main() -> None:
     args = parser.parse_args()
     if args.frames < 1:
         parser.error("--frames must be at least 1")
-    unknown = [name for name in args.sets.split(",") if name not in quality.SETS]
-    if unknown:
-        parser.error(f"unknown set {unknown[0]!r}: one of {', '.join(quality.SETS)}")
+    quality.check_arguments(parser, args.sets, args.overrides)
     overrides = dict(args.overrides)
     print("| set | video | k | regions a frame | object pixels leaked % |\n|---|---|---|---|---|")
     leaked = total = 0

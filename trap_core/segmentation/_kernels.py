@@ -95,7 +95,7 @@ def felzenszwalb_kernel(image: np.ndarray, k: float, min_size: int, size_thresho
     codes, w = _sorted_edges(image, connectivity)
     shift = 1 if connectivity == 4 else 2  # an edge's code: pixel << shift | direction
     direction = (1 << shift) - 1
-    step = (_OFFSETS[:, 0] * width + _OFFSETS[:, 1]).astype(np.int32)  # neighbour's pixel index less the pixel's, per direction
+    step = (_OFFSETS[:, 0] * width + _OFFSETS[:, 1]).astype(np.int32)  # per direction: neighbour's index - pixel's
     n = height * width
     parent = np.arange(n, dtype=np.int32)
     size = np.ones(n, dtype=np.int32)

@@ -35,10 +35,10 @@ from trap_core.pipeline import TrapParams, delivered_frames, first_frame_setup, 
 def leak_picture(rgb: np.ndarray, labels: np.ndarray, owner: np.ndarray) -> np.ndarray:
     """``rgb`` (at the size of ``labels``) with the region boundaries in black, object pixels kept
     apart from the background tinted green and leaked ones red (:func:`leaked_regions`); BGR."""
-    leaked_region = leaked_regions(labels, int(labels.max()) + 1, owner)
+    on_object = owner >= 0
+    leaked = leaked_regions(labels, int(labels.max()) + 1, owner)[labels]
     picture = rgb.astype(np.float32)
-    for mask, tint in ((owner >= 0) & ~leaked_region[labels], (0, 200, 0)), ((owner >= 0) & leaked_region[labels],
-                                                                             (255, 0, 0)):
+    for mask, tint in ((on_object & ~leaked, (0, 200, 0)), (on_object & leaked, (255, 0, 0))):
         picture[mask] = 0.4 * picture[mask] + 0.6 * np.array(tint, dtype=np.float32)
     boundary = np.zeros(labels.shape, dtype=bool)
     boundary[:, :-1] |= labels[:, :-1] != labels[:, 1:]
@@ -56,6 +56,7 @@ def video_leak(scene: dict, params: TrapParams, frames: int, rendered: bool, pic
     if rendered:
         delivery = {}
     measured = set(np.linspace(0, config.frames - 1, frames + 2).round().astype(int)[1:-1].tolist())
+    last = max(measured)
     leaked = total = 0
     counts = []
     for frame in delivered_frames(config, **delivery):
@@ -67,7 +68,7 @@ def video_leak(scene: dict, params: TrapParams, frames: int, rendered: bool, pic
         owner = cv2.resize(frame.owner, labels.shape[::-1], interpolation=cv2.INTER_NEAREST)
         frame_leaked, frame_total = leaked_pixels(labels, count, owner)
         leaked, total, counts = leaked + frame_leaked, total + frame_total, counts + [count]
-        if frame.index == max(measured):
+        if frame.index == last:
             if picture is not None:
                 small = cv2.resize(frame.rgb, labels.shape[::-1], interpolation=cv2.INTER_NEAREST)
                 cv2.imwrite(str(picture), leak_picture(small, labels, owner))

@@ -8,6 +8,7 @@ import pytest
 
 from trap_core.bagio import open_image_stream
 from trap_core.motformat import read_mot
+from trap_core.pipeline import synthetic_frames
 from trap_core.synthetic import SceneConfig, build_world, render, write_synthetic
 from trap_core.synthetic.cli import build_parser
 
@@ -139,7 +140,6 @@ def test_frames_made_in_memory_are_those_a_bag_of_the_encoding_brings(tmp_path: 
     """The quality benchmark tracks frames encoded and decoded in memory, not read from a bag:
     they must be the very pixels a bag written in that encoding gives back (a Bayer pattern's
     demosaicing, yuv422's shared colour of two columns, JPEG's losses)."""
-    from trap_core.pipeline import synthetic_frames
     cfg = SceneConfig(width=160, height=120, frames=5, seed=8, noise=1.0, shape="person")
     bag, _ = write_synthetic(cfg, tmp_path / "bag", **delivery)
     with open_image_stream(bag) as stream:
@@ -151,6 +151,7 @@ def test_frames_made_in_memory_are_those_a_bag_of_the_encoding_brings(tmp_path: 
     rendered = next(iter(render(cfg))).rgb
     lossless = delivery.get("encoding") == "bgra8"
     assert np.array_equal(in_memory[0], rendered) == lossless
+
 
 def test_bad_configs_are_refused() -> None:
     with pytest.raises(ValueError, match="too small"):

@@ -358,6 +358,31 @@ def test_rejoin_continues_a_fragment_that_broke_up_short_of_the_border_with_one_
     assert labels[0] == labels[1] != labels[2]
 
 
+def test_rejoin_takes_a_fragment_going_out_back_inside_the_view_only_where_its_motion_puts_it() -> None:
+    """A's pattern broke up 12 px short of the right border, going out (it may be going to the
+    border, it does not surely leave). 46 frames later, B appears inside the view 400 px from
+    where A's motion puts it, with the same structures (a look-alike); C starts as late, 10 px
+    from there. A did not come back as B: only C continues it, and only beyond ``lone_gap``
+    frames does the test apply."""
+    line = lambda n, x0, dx: np.column_stack([x0 + dx * np.arange(n), np.full(n, 100.0)])  # noqa: E731
+    going_out = BorderContacts(np.array([False, False]), np.array([False, False]), np.array([False, False]),
+                               np.array([True, False]))
+    look_alike = _paths([(0, line(55, 466, 3)), (100, line(40, 300, -3))])  # A ends at x 628
+    pattern = np.array([5, 5])
+    joined = rejoin_fragments(np.arange(2), look_alike, pattern, 140, max_overlap=0, at_border=going_out)
+    assert joined[0] == joined[1]  # without the limit (max_apart): the same structures suffice
+    apart = rejoin_fragments(np.arange(2), look_alike, pattern, 140, max_overlap=0, at_border=going_out,
+                             lone_gap=25, max_apart=40.0)
+    assert apart[0] != apart[1]
+    short_gap = rejoin_fragments(np.arange(2), look_alike, pattern, 140, max_overlap=0, at_border=going_out,
+                                 lone_gap=50, max_apart=40.0)
+    assert short_gap[0] == short_gap[1]
+    on_its_line = _paths([(0, line(55, 466, 3)), (100, line(40, 756, 3))])
+    kept = rejoin_fragments(np.arange(2), on_its_line, pattern, 140, max_overlap=0, at_border=going_out,
+                            lone_gap=25, max_apart=40.0)
+    assert kept[0] == kept[1]
+
+
 def test_rejoin_predicts_an_object_still_in_the_world_when_the_camera_stops() -> None:
     """The camera pans 4 px a frame until frame 30, then stands; an object still in the world
     slides left in the view while it pans, is hidden from frame 30 to 59, and is seen again at
@@ -1738,7 +1763,8 @@ def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_end
 def test_boxes_after_an_object_left_the_view_are_dropped() -> None:
     """An object leaves through the left border (its box shrinks there to 5 px), then the
     patterns go on with something else clear of the border: those boxes are not the object, nor
-    is a later box inside the view; one at the border is its return. An object that only dips
+    is a later box inside the view; one at the border is its return, also where something else
+    filled the gap up to it (it comes back with a jump). An object that only dips
     into the border and comes back keeps every box, as does one coming back into view whose
     first boxes shrink at the border: it was not seen whole before."""
     from trap_core.robust import end_at_exits
@@ -1756,6 +1782,11 @@ def test_boxes_after_an_object_left_the_view_are_dropped() -> None:
     sliver[1] = (3.0, 200.0, 1.0, 30.0)  # its return's first box: a 1 px strip of it, 3 px in
     returns = _as_track(1, np.r_[frames[:35], 60, 80], np.vstack([seen, sliver]))
     assert end_at_exits(returns, 640, 480, min_gap=12).frames.tolist() == list(range(28)) + [80]
+    # Something else goes on with no gap up to its return through the right border (a jump).
+    filled = np.column_stack([np.r_[65.0 + np.arange(25), np.full(5, 600.0)], np.full(30, 200.0),
+                              np.r_[np.full(25, 16.0), np.full(5, 40.0)], np.full(30, 30.0)])
+    gap_filled = _as_track(1, np.arange(65), np.vstack([seen, filled]))
+    assert end_at_exits(gap_filled, 640, 480, min_gap=12).frames.tolist() == list(range(28)) + list(range(60, 65))
     dipping = boxes[:35].copy()
     dipping[28:, 2] = np.linspace(10, 40, 7)  # grows back at the border: never left
     assert len(end_at_exits(_as_track(1, frames[:35], dipping), 640, 480, min_gap=12)) == 35

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
-from trap_core.clustering import Track, box_centres, in_rows, reaches_border
+from trap_core.clustering import Track, box_centres, in_rows, reaches_border, track_pieces
 from trap_core.robust.gaps import with_inferred
 
 SIZE_RATIO = 1.25  # a box in view this much smaller than the track's usual one may be of a cut part
@@ -100,9 +100,11 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     of its boxes fully in view), and the next box is off that border. A body mostly out of view
     cannot be clear of the border a frame later unless it moves half its size in a frame: the
     patterns went on with something else (noise, a neighbour) once the object was gone. Nor can
-    it come back but through the border: boxes are dropped up to a run (after a gap of more than
-    ``min_gap`` frames) whose first box reaches the border (:func:`reaches_border`, within a
-    quarter of the object's usual extent: that box may be a sliver of it).
+    it come back but through the border: boxes are dropped up to a piece (after a gap of more than
+    ``min_gap`` frames, or a jump of the box by more than its size: a continuation through the
+    gap, :func:`trap_core.robust.continue_tracks`, can run up to the return) whose first box
+    reaches the border (:func:`reaches_border`, within a quarter of the object's usual extent:
+    that box may be a sliver of it).
 
     Parameters
     ----------
@@ -128,8 +130,11 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     usual = np.median(extent[whole], axis=0)
     frames = track.frames
     starts = np.r_[True, np.diff(frames) > min_gap]
-    # a run's first box may be a sliver of the object at the border: reach measured at its usual size
-    entering = starts & reaches_border(boxes, width, height, size=usual[:2])
+    # a continuation can fill the gap up to the object's return: it comes back with a jump then
+    pieces = np.zeros(frames.size, dtype=bool)
+    pieces[[rows[0] for rows in track_pieces(frames, min_gap, boxes)]] = True
+    # a piece's first box may be a sliver of the object at the border: reach measured at its usual size
+    entering = pieces & reaches_border(boxes, width, height, size=usual[:2])
     # an object coming into view lies on the border, its boxes as noisy as its patterns: seen whole first, it can leave
     whole_before = _seen_whole_in_run(whole, starts)
     keep = np.ones(frames.size, dtype=bool)

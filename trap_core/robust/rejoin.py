@@ -20,7 +20,11 @@ going out) continues only one that enters it (first box at the border, coming in
 that vanished inside the view (occluded) only one that appears inside it: an object comes back
 the way it went. A fragment whose patterns broke up shortly before its object reached the
 border (or formed shortly after it came in) may have gone either way; pairs that surely came
-back the way they went are joined first.
+back the way they went are joined first. A fragment that was going to the border and is
+continued inside the view more than ``lone_gap`` frames later, by one that does not come from
+the border, turned back rather than went out: that continuation must start where the earlier
+fragment's motion puts it (within ``max_apart``). Identical objects share every structure:
+without this, one that went out was continued by a look-alike anywhere in the view.
 Two groups seen at once in different places (further apart than the linking distance over the
 frames both cover) are two objects and are never joined, not even through a later fragment.
 Nor is a fragment joined to a group when it goes along with other clusters (in the same place,
@@ -100,7 +104,10 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     one that starts up to ``lone_gap`` frames later within that reach, when no other pair of
     either fragment has a prediction error under ``RIVAL_RATIO`` times its own.
     Groups seen in the same frames more than ``max_apart`` px apart (on average over those
-    frames) are two objects, whatever else they share: they are not joined. Neither are two
+    frames) are two objects, whatever else they share: they are not joined. A fragment that
+    may be going to the border but does not surely leave the view is continued by one that
+    appears inside it (not from the border) more than ``lone_gap`` frames later only within
+    ``max_apart`` of where its motion puts it. Neither are two
     fragments when one goes along with clusters (:func:`_going_along`) that are mostly seen
     with the other's group and apart from it (:func:`_on_another_object`).
     """
@@ -127,6 +134,9 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     costs = _prediction_errors(summary.paths, earlier, later, transforms)
     keep = (similarity[earlier, later] >= min_similarity) | ((costs <= adjacent_reach) & (
         (gap[earlier, later] <= adjacent_gap) | _unrivalled(earlier, later, costs, n_clusters)))
+    if at_border is not None:  # going out, back inside the view only where its motion puts it
+        turned = to_border[earlier] & ~leaves[earlier] & ~from_border[later] & (gap[earlier, later] > lone_gap)
+        keep &= ~turned | (costs <= max_apart)
     earlier, later, costs = earlier[keep], later[keep], costs[keep]
     unsure = np.zeros(costs.size, dtype=bool) if at_border is None else leaves[earlier] != enters[later]
     group = np.arange(n_clusters)

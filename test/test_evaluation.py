@@ -9,7 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from trap_core.evaluation import box_precision_recall, cluster_precision_recall, leaked_pixels, leaked_regions
+from trap_core.evaluation import (box_precision_recall, cluster_precision_recall, held_objects, leaked_pixels,
+                                  leaked_regions, object_timeline)
 from trap_core.evaluation.baselines import run_baselines
 from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores
 from trap_core.pipeline import TrapParams, delivered_frames, frame_regions, synthetic_graphs, track
@@ -21,6 +22,20 @@ def test_box_measures() -> None:
     track = {0: (0, 0, 10, 10), 1: (5, 0, 10, 10)}  # frame 1: half inside, centre (10, 5) on the edge
     precision, recall = box_precision_recall(track, truth)
     assert precision == pytest.approx((100 + 50) / 200) and recall == pytest.approx(2 / 3)
+
+
+def test_held_objects_follow_a_track_that_trades_and_leaves_its_object(tmp_path: Path) -> None:
+    """A track on object 0 for frames 0-4, on the background in 5-6 and on object 1 in 7-9;
+    where the two objects' boxes overlap, the smaller (nearer) one holds the centre."""
+    truth = [{f: (10.0, 10.0, 20.0, 20.0) for f in range(10)}, {f: (100.0, 10.0, 20.0, 20.0) for f in range(10)}]
+    truth[1][2] = (12.0, 12.0, 10.0, 10.0)  # object 1 passes in front of object 0
+    track = {f: (12.0, 12.0, 10.0, 10.0) for f in range(5)}
+    track.update({5: (300.0, 300.0, 10.0, 10.0), 6: (300.0, 300.0, 10.0, 10.0)})
+    track.update({f: (102.0, 12.0, 10.0, 10.0) for f in range(7, 10)})
+    held = held_objects(track, truth)
+    assert [held[f] for f in range(10)] == [0, 0, 1, 0, 0, -1, -1, 1, 1, 1]
+    picture = object_timeline([track], truth, 10, tmp_path / "objects.png")
+    assert picture.stat().st_size > 1000
 
 
 def test_leaked_pixels_are_object_pixels_in_regions_mostly_of_background() -> None:

@@ -1,0 +1,84 @@
+"""Which object each track holds, frame by frame, against ground truth, and its picture.
+
+Precision, recall, MOTA and IDF1 say how much a set of tracks misses; they do not say where a
+track went over to another object, followed the background for a while or came back after an
+exit. Here each track is a row of bars over its frames, coloured by the object whose
+ground-truth box holds its box centre (the recall test of :func:`box_precision_recall`), grey
+where none does: a trade between look-alikes is a change of colour, a track on the background
+a grey run.
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+
+Boxes = dict[int, tuple]  # frame (0-based) -> (x, y, w, h), as the scores take them
+NONE = -1  # the track's box centre lies in no object's box
+
+
+def held_objects(track: Boxes, truth: Sequence[Boxes]) -> dict[int, int]:
+    """Per frame of ``track``: the object whose ground-truth box holds the track box's centre
+    (the smallest such box where several do: the nearer object hides the other), else
+    :data:`NONE`."""
+    held = {}
+    for frame, (x, y, w, h) in track.items():
+        cx, cy = x + w / 2, y + h / 2
+        best, best_area = NONE, np.inf
+        for obj, boxes in enumerate(truth):
+            if frame not in boxes:
+                continue
+            gx, gy, gw, gh = boxes[frame]
+            if gx <= cx <= gx + gw and gy <= cy <= gy + gh and gw * gh < best_area:
+                best, best_area = obj, gw * gh
+        held[int(frame)] = best
+    return held
+
+
+def object_timeline(boxes_per_track: Sequence[Boxes], truth: Sequence[Boxes], n_frames: int, path: str | Path,
+                    title: str = "") -> Path:
+    """Write the picture of which object each track holds (:func:`held_objects`) over frames
+    1..``n_frames`` to ``path``, a row per track, the objects' own frames as a last row each."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    colours = plt.get_cmap("tab10")
+    rows = len(boxes_per_track) + len(truth)
+    figure, axes = plt.subplots(figsize=(10, 1.4 + 0.3 * max(rows, 1)), dpi=100)
+    for row, track in enumerate(boxes_per_track):
+        held = held_objects(track, truth)
+        frames = np.array(sorted(held), dtype=np.int64)
+        objects = np.array([held[f] for f in frames.tolist()], dtype=np.int64)
+        for first, length, obj in _runs(frames, objects):
+            axes.broken_barh([(first + 1, length)], (row - 0.35, 0.7), linewidth=0,
+                             facecolors="0.6" if obj == NONE else colours(obj % 10))
+    for obj, boxes in enumerate(truth):
+        frames = np.array(sorted(boxes), dtype=np.int64)
+        for first, length, _ in _runs(frames, np.zeros(frames.size, dtype=np.int64)):
+            axes.broken_barh([(first + 1, length)], (len(boxes_per_track) + obj - 0.2, 0.4), linewidth=0,
+                             facecolors=colours(obj % 10))
+    labels = [f"track {k + 1}" for k in range(len(boxes_per_track))] + [f"object {k}" for k in range(len(truth))]
+    axes.set_yticks(range(rows), labels)
+    axes.set_ylim(-0.7, max(rows, 1) - 0.3)
+    axes.invert_yaxis()
+    axes.set_xlim(1, max(n_frames, 2))
+    axes.set_xlabel("frame (colour: the object a track's box centre lies on; grey: none)")
+    axes.set_title(title or f"{len(boxes_per_track)} tracks, {len(truth)} objects")
+    figure.tight_layout()
+    path = Path(path)
+    figure.savefig(path)
+    plt.close(figure)
+    return path
+
+
+def _runs(frames: np.ndarray, objects: np.ndarray) -> list[tuple[int, int, int]]:
+    """(first frame, length, object) of each run of consecutive ``frames`` (sorted) that hold one
+    object."""
+    if frames.size == 0:
+        return []
+    breaks = np.flatnonzero((np.diff(frames) > 1) | (np.diff(objects) != 0))
+    firsts = np.r_[0, breaks + 1]
+    lasts = np.r_[breaks, frames.size - 1]
+    return [(int(frames[a]), int(frames[b] - frames[a] + 1), int(objects[a])) for a, b in zip(firsts, lasts)]

@@ -113,6 +113,7 @@ def test_evaluate_writes_a_report(tmp_path: Path, venv_bin: Path) -> None:
                              "robust (+ across the border)"]
     assert all(0 <= o["box_p"] <= 1 for m in methods.values() for o in m["objects"])
     assert (tmp_path / "report" / "tracks_clip.png").exists()
+    assert (tmp_path / "report" / "objects_clip.png").exists() and "(objects_clip.png)" in report
     assert (tmp_path / "report" / "levels_clip_object1.png").exists()
     missing = subprocess.run([str(venv_bin / "evaluate"), str(tmp_path / "nowhere")], capture_output=True,
                              text=True, timeout=60)

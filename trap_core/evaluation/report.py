@@ -19,6 +19,7 @@ from trap_core.bagio import open_image_stream  # noqa: E402
 from trap_core.cli import UsageError, parameter_assignment, results_folder, run_main  # noqa: E402
 from trap_core.evaluation.baselines import TRACKERS, run_baselines  # noqa: E402
 from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores, level_curves  # noqa: E402
+from trap_core.evaluation.held_objects import object_timeline  # noqa: E402
 from trap_core.evaluation.paper_measures import box_precision_recall, cluster_precision_recall  # noqa: E402
 from trap_core.evaluation.scoring import boxes_by_frame, match_objects, mot_measures  # noqa: E402
 from trap_core.motformat import ground_truth_path, read_mot  # noqa: E402
@@ -110,6 +111,8 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
         if label.startswith("robust"):
             result["sheet"] = str(contact_sheet(thumbnails.images, run.tracks, thumbnails.scale,
                                                 out / f"tracks_{name}.png"))
+            result["held_objects"] = str(object_timeline(boxes, truth, n_frames, out / f"objects_{name}.png",
+                                                         f"{name}: the object each robust track holds"))
         result["methods"][label] = entry
     if baselines:
         with open_image_stream(bag, topic) as stream:
@@ -184,7 +187,7 @@ def markdown(results: list[dict]) -> str:
                          f"{entry['HOTA']:.2f} | {entry['seconds']:.1f} |")
         lines += ["", f"Segmentation and graphs: {res['graph_seconds']:.1f} s "
                       f"({res['frames'] / max(res['graph_seconds'], 1e-9):.0f} frames/s).", ""]
-        lines += [f"![tracks]({Path(res['sheet']).name})", ""]
+        lines += [f"![tracks]({Path(res['sheet']).name})", "", f"![objects held]({Path(res['held_objects']).name})", ""]
         for figure in paper.get("figures", []):
             lines.append(f"![levels]({Path(figure).name})")
         lines.append("")

@@ -1718,7 +1718,8 @@ def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_end
     """The track holds frames 0-59 of an object moving right; cluster 0 goes on from frame 62
     where that motion puts it, cluster 1 starts at the same time 185 px away, cluster 2 goes on
     in the right place but repeats the other track's boxes from frame 80 (or has boxes around
-    them; or, as the object leaves a narrower view, boxes clear of the border)."""
+    them; or, as the object leaves a narrower view, boxes clear of the border, first or after
+    some on it)."""
     from trap_core.clustering import summarise
     from trap_core.robust import continue_tracks
     t = np.arange(100, dtype=float)
@@ -1748,6 +1749,13 @@ def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_end
                                built.__getitem__)[0]) == 60
     assert len(continue_tracks([cut, far_track], summary, np.array([0]), 100, 250, 480, 12, 40.0,
                                built.__getitem__)[0]) == 98
+    # Its motion takes it out of that view: a candidate on the border, then from frame 75 back
+    # inside (something else), lends its boxes up to frame 74 only.
+    comes_back = boxes.copy()
+    comes_back[75:, 0] = 100.0
+    built[2] = _as_track(0, np.arange(62, 100), comes_back[62:])
+    out = continue_tracks([cut, far_track], summary, np.array([2]), 100, 250, 480, 12, 40.0, built.__getitem__)
+    assert out[0].frames.tolist() == list(range(60)) + list(range(62, 75))
     # A track with a later piece (frames 90-99) is continued in the gap between its pieces only.
     pieces = _as_track(1, np.r_[0:60, 90:100], boxes[np.r_[0:60, 90:100]])
     out = continue_tracks([pieces, far_track], summary, np.array([0]), 100, 640, 480, 12, 40.0, built.__getitem__)

@@ -55,7 +55,9 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     another with its late ones), and a piece it makes is continued in turn. Where the piece's last
     box reaches the border of the ``width`` x ``height`` frames (its object is leaving), the
     candidate's first box appended must reach it too: one that starts clear of the border is
-    something else the patterns found once the object was gone. Back in time, read first for last: a
+    something else the patterns found once the object was gone; and where the piece's motion
+    takes it out of the view within ``window`` frames, only the candidate's boxes up to the first
+    one clear of the border are appended (the object is gone after that). Back in time, read first for last: a
     track whose cluster began late (its object's first patterns went to a cluster too short to be
     selected) gets that cluster's boxes before its start.
     """
@@ -109,6 +111,8 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
         if error <= reach:
             near.append((error, cluster))
     crossing = reaches_border(current.boxes[current.frames == edge], *view)[0]
+    beyond = origin + velocity * (edge - window if backward else edge + window)  # where its motion goes
+    outward = crossing and not (0 <= beyond[0] <= view[0] and 0 <= beyond[1] <= view[1])
     others = [t for k, t in enumerate(tracks) if k != slot]
     for _, cluster in sorted(near):
         follow = build(cluster)
@@ -118,6 +122,11 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
         if crossing and not (len(follow) and reaches_border(follow.boxes[-1:] if backward else follow.boxes[:1],
                                                             *view)[0]):
             continue
+        if outward:  # out of view once off the border: the boxes inside after that are something else
+            at_border = reaches_border(follow.boxes, *view)
+            off = np.flatnonzero(~at_border[::-1] if backward else ~at_border)
+            kept = np.arange(len(follow)) < (off[0] if off.size else len(follow))
+            follow = in_rows(follow, kept[::-1] if backward else kept)
         return follow, cluster
     return None
 

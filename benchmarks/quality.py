@@ -564,7 +564,8 @@ def main() -> None:
     parser.add_argument("--sets", default=",".join(SETS), help="comma-separated: " + ", ".join(SETS))
     parser.add_argument("--cache", type=Path, default=Path.home() / ".cache" / "trap_ros" / "quality")
     parser.add_argument("--pictures", type=Path, metavar="DIR",
-                        help="also write each video's contact sheet, timeline of tracks and of the objects they hold here")
+                        help="also write each video's contact sheet, timeline of tracks and of the objects they "
+                             "hold here")
     parser.add_argument("-p", dest="overrides", action="append", default=[], type=parameter_assignment,
                         metavar="NAME:=VALUE", help="parameter for every run (as process_bag's -p)")
     args = parser.parse_args()

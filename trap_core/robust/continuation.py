@@ -57,9 +57,9 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     candidate's first box appended must reach it too: one that starts clear of the border is
     something else the patterns found once the object was gone; and where the piece's motion
     takes it out of the view within ``window`` frames, only the candidate's boxes up to the first
-    one clear of the border are appended (the object is gone after that). Back in time, read first for last: a
-    track whose cluster began late (its object's first patterns went to a cluster too short to be
-    selected) gets that cluster's boxes before its start.
+    one clear of the border are appended (the object is gone after that). Back in time, read
+    first for last: a track whose cluster began late (its object's first patterns went to a
+    cluster too short to be selected) gets that cluster's boxes before its start.
     """
     out = list(tracks)
     lent = np.zeros(summary.covered.shape, dtype=bool)  # (cluster, frame) whose box went to a track

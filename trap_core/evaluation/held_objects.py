@@ -39,7 +39,8 @@ def held_objects(track: Boxes, truth: Sequence[Boxes]) -> dict[int, int]:
 def object_timeline(boxes_per_track: Sequence[Boxes], truth: Sequence[Boxes], n_frames: int, path: str | Path,
                     title: str = "") -> Path:
     """Write the picture of which object each track holds (:func:`held_objects`) over frames
-    1..``n_frames`` to ``path``, a row per track, the objects' own frames as a last row each."""
+    1..``n_frames`` to ``path``, a row per track, then a row of each object's own frames (objects
+    numbered from 1, as in ground-truth files)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -59,7 +60,8 @@ def object_timeline(boxes_per_track: Sequence[Boxes], truth: Sequence[Boxes], n_
         for first, length, _ in _runs(frames, np.zeros(frames.size, dtype=np.int64)):
             axes.broken_barh([(first + 1, length)], (len(boxes_per_track) + obj - 0.2, 0.4), linewidth=0,
                              facecolors=colours(obj % 10))
-    labels = [f"track {k + 1}" for k in range(len(boxes_per_track))] + [f"object {k}" for k in range(len(truth))]
+    labels = [f"track {k + 1}" for k in range(len(boxes_per_track))]
+    labels += [f"object {k + 1}" for k in range(len(truth))]
     axes.set_yticks(range(rows), labels)
     axes.set_ylim(-0.7, max(rows, 1) - 0.3)
     axes.invert_yaxis()

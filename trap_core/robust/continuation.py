@@ -124,9 +124,10 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
             continue
         if outward:  # out of view once off the border: the boxes inside after that are something else
             at_border = reaches_border(follow.boxes, *view)
-            off = np.flatnonzero(~at_border[::-1] if backward else ~at_border)
-            kept = np.arange(len(follow)) < (off[0] if off.size else len(follow))
-            follow = in_rows(follow, kept[::-1] if backward else kept)
+            if backward:  # the run at the border read from the end
+                follow = in_rows(follow, np.logical_and.accumulate(at_border[::-1])[::-1])
+            else:
+                follow = in_rows(follow, np.logical_and.accumulate(at_border))
         return follow, cluster
     return None
 

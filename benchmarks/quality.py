@@ -359,9 +359,11 @@ ENCODED = [  # drawn at random (generator 5151) after every rule (session 51), w
               zoom=0.1, rotation=8.0, background="rocket")),
     ]
 ]
-LATER = [  # drawn at random (generators 20261129-20261131) after every rule (session 53): any size, shape,
-    # background and delivery (raw, bag encodings, JPEG), segmented as process_bag does by default; the rule for
-    # fragments that turn back short of the border was made on the eighth video, none on the others
+LATER = [  # drawn at random (generators 20261129-20261131) in session 53, before its rules: any size, shape,
+    # background and delivery (raw, bag encodings, JPEG), segmented as process_bag does by default; three rules
+    # were made on it: fragments that turn back short of the border (the eighth video), a return kept after a
+    # continuation that fills the gap (mixed shapes over the cameraman, 320x240) and continuations of an object
+    # going out (cars over gravel)
     ("identical, car, 3 objects, 1280x720, 300 frames, turn 15 deg, noise 0.5, immunohistochemistry",
      dict(seed=8290, identical=True, objects=3, width=1280, height=720, frames=300, rotation=15.0, noise=0.5,
           background="immunohistochemistry"), "felzenszwalb"),

@@ -1714,6 +1714,35 @@ def test_a_track_continued_back_in_time_is_continued_again_from_its_new_start() 
     np.testing.assert_allclose(out[0].boxes[:26], boxes[:26])
 
 
+def test_a_track_that_ends_behind_another_object_is_continued_by_the_cluster_coming_out_of_it() -> None:
+    """Object A moves right behind object B (still, track 2) and is hidden from frame 45 to 61;
+    track 1 ends at 44, its box on B's. Cluster 0 starts at 62, out of B, 18 frames later (more
+    than the 12-frame window): it continues track 1. Cluster 1, as late and 185 px away, does
+    not; nor does cluster 0 where nothing hid the track (no track 2) or B's track left in the
+    meantime."""
+    from trap_core.clustering import summarise
+    from trap_core.robust import continue_tracks
+    t = np.arange(100, dtype=float)
+    a = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    b = np.tile([200.0, 195.0, 40.0, 40.0], (100, 1))
+    centres = a[:, :2] + a[:, 2:4] / 2
+    summary = summarise(np.array([0, 1]), _paths([(62, centres[62:]), (62, centres[62:] + [0.0, 185.0])]),
+                        np.ones(2), 100)
+    built = {0: _as_track(0, np.arange(62, 100), a[62:]),
+             1: _as_track(0, np.arange(62, 100), a[62:] + [0.0, 185.0, 0.0, 0.0])}
+    frames = np.arange(100)
+    hidden, hiding = _as_track(1, frames[:45], a[:45]), _as_track(2, frames, b)
+    out = continue_tracks([hidden, hiding], summary, np.array([0, 1]), 100, 640, 480, 12, 40.0, built.__getitem__)
+    assert out[0].frames.tolist() == list(range(45)) + list(range(62, 100))
+    np.testing.assert_allclose(out[0].boxes[45:], a[62:])
+    assert len(continue_tracks([hidden, hiding], summary, np.array([1]), 100, 640, 480, 12, 40.0,
+                               built.__getitem__)[0]) == 45
+    assert len(continue_tracks([hidden], summary, np.array([0]), 100, 640, 480, 12, 40.0, built.__getitem__)[0]) == 45
+    gone = _as_track(2, frames[:50], b[:50])
+    assert len(continue_tracks([hidden, gone], summary, np.array([0]), 100, 640, 480, 12, 40.0,
+                               built.__getitem__)[0]) == 45
+
+
 def test_a_track_cut_short_is_continued_by_the_cluster_that_goes_on_where_it_ended() -> None:
     """The track holds frames 0-59 of an object moving right; cluster 0 goes on from frame 62
     where that motion puts it, cluster 1 starts at the same time 185 px away, cluster 2 goes on

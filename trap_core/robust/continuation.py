@@ -7,7 +7,8 @@ ended but is too short to be selected, and overlaps the track's cluster in time 
 rejoined to it. :func:`continue_tracks` appends it, after the track's last frame or in a gap
 between two of its pieces (where a stretch on another object was dropped from the middle); and
 the same way back in time, before a track's first frame, where the object's first patterns made
-such a cluster.
+such a cluster. Where the object stays behind the other for longer than its motion can be
+carried on, the cluster starts later, out of the other's box, and is taken from there.
 
 When such a cluster was long enough to be selected, the object's path after the meeting is a
 track of its own, often starting on the other object (for as long as the two are in one place,
@@ -47,7 +48,11 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     A candidate continues a piece if it covers at least ``window`` frames not used up (below) after
     the piece's last one and before the next piece, the first of them at most ``window`` frames
     after it, and there its mean position is at most ``reach`` px from where the piece's motion (a
-    straight line through its last ``window`` box centres) puts it; the closest one is taken, and
+    straight line through its last ``window`` box centres) puts it; or, where the piece's last box
+    overlaps another track's (its object went behind that one, or merged with it) and that track
+    stays in view, the first of them any number of frames later, at most ``reach`` px from that
+    track's box centre there (a hidden object comes out of what hid it, however long that took,
+    and its motion behind it is unknown). The closest one is taken, and
     its boxes (``build(cluster)``) between the two pieces are appended, except where they repeat
     another track's box (IoU at least ``min_iou``, or the centre of the smaller box lies in the
     other: boxes around an object tracked already). A candidate's frames in the gap it fills are
@@ -99,21 +104,25 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
         return None
     velocity, origin = line
     lo, hi = (limit + 1, edge) if backward else (edge + 1, limit)
+    others = [t for k, t in enumerate(tracks) if k != slot]
+    edge_box = current.boxes[current.frames == edge]
+    hiding = [t for t in others if box_iou(edge_box, box_path(t, summary.covered.shape[1])[edge])[0] > 0]
     near = []
     for cluster in candidates.tolist():
         covered = np.flatnonzero(summary.covered[cluster, lo:hi] & ~lent[cluster, lo:hi]) + lo
         if covered.size < window:
             continue
         nearest = int(covered[-1] if backward else covered[0])
-        if abs(nearest - edge) > window:
-            continue
-        error = float(np.linalg.norm(summary.paths.at(cluster, nearest) - (origin + velocity * nearest)))
+        position = summary.paths.at(cluster, nearest)
+        if abs(nearest - edge) <= window:
+            error = float(np.linalg.norm(position - (origin + velocity * nearest)))
+        else:
+            error = _out_from_hiding(hiding, position, edge, nearest, window)
         if error <= reach:
             near.append((error, cluster))
-    crossing = reaches_border(current.boxes[current.frames == edge], *view)[0]
+    crossing = reaches_border(edge_box, *view)[0]
     beyond = origin + velocity * (edge - window if backward else edge + window)  # where its motion goes
     outward = crossing and not (0 <= beyond[0] <= view[0] and 0 <= beyond[1] <= view[1])
-    others = [t for k, t in enumerate(tracks) if k != slot]
     for _, cluster in sorted(near):
         follow = build(cluster)
         follow = in_rows(follow, (follow.frames >= lo) & (follow.frames < hi))
@@ -304,6 +313,23 @@ def _wandering_from(ending: Track, later: Track, window: int, reach: float) -> i
     kept = np.flatnonzero(~off)  # the first box (going back) near the line ends the tail
     tail = before[:kept[0]] if kept.size else before
     return int(ending.frames[tail[-1]]) if tail.size else start
+
+
+def _out_from_hiding(hiding: Sequence[Track], position: np.ndarray, edge: int, nearest: int, window: int) -> float:
+    """Distance from ``position`` (a candidate's, in frame ``nearest``) to the nearest box centre
+    there of the tracks ``hiding`` a piece at its ``edge`` frame (their boxes overlapped) that
+    stayed in view all along (no gap over ``window`` frames between the two frames): an object
+    hidden behind another, or merged with it, comes out of it however long it stayed there; inf
+    where none."""
+    first, last = min(edge, nearest), max(edge, nearest)
+    distances = [np.inf]
+    for track in hiding:
+        frames = track.frames[(track.frames >= first) & (track.frames <= last)]
+        if frames.size and frames[0] - first <= window and last - frames[-1] <= window \
+                and np.diff(frames).max(initial=0) <= window and nearest in frames:
+            centre = box_centres(track.boxes[np.searchsorted(track.frames, nearest)][None])[0]
+            distances.append(float(np.linalg.norm(position - centre)))
+    return min(distances)
 
 
 def _motion_at(track: Track, end: int, window: int) -> tuple[np.ndarray, np.ndarray] | None:

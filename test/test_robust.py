@@ -1122,6 +1122,38 @@ def test_a_cluster_of_jittering_patterns_is_still_and_a_moving_one_is_not() -> N
     assert still > 2.0 and moves < 1e-6  # the first moves against the world, the second with it
 
 
+def test_a_pattern_whose_regions_stay_with_the_scene_while_its_path_moves_is_background() -> None:
+    """A still block and a moving object, each with a spot on its edge (a face of its own). Given
+    a path that drifts 2 px a frame, as a chain of noise structures does, the block's pattern is
+    background: its regions stay where the camera (still) puts them. The object's pattern, on its
+    own path, is not; nor is the block's on its own still path (nothing tells the two apart)."""
+    from trap_core.mining import MiningParams, mine
+    from trap_core.rag import StackedGraphs
+    from trap_core.robust import scene_patterns
+    graphs = []
+    for t in range(40):
+        rgb = np.full((120, 240, 3), 40, np.uint8)
+        rgb[20:50, 20:50] = (0, 0, 200)
+        rgb[20:26, 30:40] = (200, 200, 0)
+        x = 100 + 2 * t
+        rgb[60:90, x:x + 30] = (0, 200, 0)
+        rgb[84:90, x + 10:x + 20] = (200, 0, 0)
+        graphs.append(frame_graph(rgb, TrapParams(segmentation="colour")))
+    result = mine(graphs, MiningParams(eps=40.0, tau=5, freq_st_min=10, max_faces=3, linking="assignment"))
+    spans = [np.ptp(result.occ_position[result.st(p), 0]) for p in range(result.n_st)]
+    block, thing = int(np.argmin(spans)), int(np.argmax(spans))
+    assert spans[block] < 1 and spans[thing] > 40
+    seen, at = result.occ_frame[result.st(thing)], result.occ_position[result.st(thing)]
+    span = np.arange(seen.min(), seen.max() + 1)
+    own = np.column_stack([np.interp(span, seen, at[:, axis]) for axis in (0, 1)])
+    drifting = result.occ_position[result.st(block)][:1] + np.column_stack([2.0 * np.arange(40), np.zeros(40)])
+    stacked, still = StackedGraphs.of(graphs), np.tile(np.eye(3), (40, 1, 1))
+    paths = Trajectories.pack([0, int(span[0])], [drifting, own])
+    assert scene_patterns(result, np.array([block, thing]), paths, 40, stacked, still, 0.8, 2).tolist() == [True, False]
+    in_place = Trajectories.pack([0], [np.repeat(result.occ_position[result.st(block)][:1], 40, axis=0)])
+    assert not scene_patterns(result, np.array([block]), in_place, 40, stacked, still, 0.8, 2)[0]
+
+
 def test_shadowed_share_counts_frames_with_a_moving_cluster_within_reach() -> None:
     """Cluster 0 runs beside cluster 2 (6 px apart) for frames 0-39, then leaves it (60 px);
     cluster 1 is never near: 40 of 80 frames shadowed against 0 of 50. Cluster 2 is seen in

@@ -100,7 +100,9 @@ class TrapParams:
     own_region: bool = _p(True, "robust: a cluster selected as a track whose own region (the one most of its "
                                 "occurrences hold) is found again, tau/5 frames before and after, where the camera's "
                                 "motion puts it more often than where the cluster's motion does stays with the scene "
-                                "(a chain of noise-born structures): it is background, and the next cluster is taken")
+                                "(a chain of noise-born structures): it is background, and the next cluster is taken; "
+                                "a selected cluster's pattern whose own region, along its own path, stays with the "
+                                "scene so is left out of its track")
     one_object: bool = _p(True, "robust: a cluster of the cut whose patterns lie on two objects at once (further "
                                 "apart than half their sizes on average, or in tau frames) is split down the "
                                 "hierarchy; a selected cluster's pattern that shares its regions mostly with "

@@ -18,9 +18,9 @@ from trap_core.pipeline.track_rules import Clusters, ClusterTracks, tracks_of_cl
 from trap_core.rag import PlaneGraph, StackedGraphs
 from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, alone_at_ends, border_contacts,
                               border_share, camera_paths, camera_transforms, cluster_world_speed, hand_to_owners,
-                              held_share, moves_in_hops, pattern_sizes, rejoin_fragments, shadowed, split_mixed,
-                              stays_with_scene, steady_patterns, whole_patterns_apart, without_backdrop, world_speed,
-                              world_steps)
+                              held_share, moves_in_hops, pattern_sizes, rejoin_fragments, scene_patterns, shadowed,
+                              split_mixed, stays_with_scene, steady_patterns, whole_patterns_apart, without_backdrop,
+                              world_speed, world_steps)
 
 
 @dataclass
@@ -206,6 +206,11 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
             selected = selection(moving)
     all_labels = np.full(mined.n_st, -1, dtype=np.int64)
     all_labels[clustered] = labels
+    if robust and params.min_speed > 0 and params.own_region and selected:  # and each of their patterns' own
+        rows = np.flatnonzero(np.isin(labels, selected))
+        scene = scene_patterns(mined, clustered[rows], sub_paths.subset(rows), n_frames, stacked, transforms,
+                               params.core_share, max(1, params.tau // 5))
+        all_labels[clustered[rows[scene]]] = -1
     if robust and params.one_object:
         all_labels = hand_to_owners(mined, all_labels, selected, stacked)
     clusters = Clusters(summary, selected, moving, labels, mined.st_pattern[clustered], occurrences)

@@ -2,7 +2,7 @@
 track boxes without the background and where objects meet."""
 
 from trap_core.clustering import reaches_border
-from trap_core.robust.anchors import stays_with_scene
+from trap_core.robust.anchors import scene_patterns, stays_with_scene
 from trap_core.robust.appearance import colour_overlap, colour_shares
 from trap_core.robust.backdrop import (HELD_SHARE, SHADOWED_SHARE, held_share, shadowed,
                                        without_backdrop)
@@ -33,6 +33,6 @@ __all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderCont
            "drop_shared_stretches", "drop_still_regions", "drop_stray_pieces", "drop_strays", "end_at_exits",
            "extend_from_twins", "fill_gaps", "grow_boxes", "hand_to_owners", "held_share", "join_handovers",
            "join_returns", "keep_one_size", "lookalike_tracks", "mend_shared_stretches", "merge_duplicates",
-           "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments", "separate_groups", "shadowed",
-           "split_mixed", "stays_with_scene", "steady_patterns", "swap_at_crossings", "through_groups",
-           "whole_patterns_apart", "without_backdrop", "world_speed", "world_steps"]
+           "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments", "scene_patterns",
+           "separate_groups", "shadowed", "split_mixed", "stays_with_scene", "steady_patterns", "swap_at_crossings",
+           "through_groups", "whole_patterns_apart", "without_backdrop", "world_speed", "world_steps"]

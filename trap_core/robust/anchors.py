@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from trap_core.clustering import frame_cores
+from trap_core.clustering import Trajectories, frame_cores
 from trap_core.mining import MiningResult
 from trap_core.rag import StackedGraphs
 from trap_core.robust._kernels import anchors_found_again
@@ -62,3 +62,17 @@ def stays_with_scene(result: MiningResult, patterns: np.ndarray, positions: np.n
         graphs.node_offsets, graphs.centroid, graphs.area, graphs.label, frames, cores.top, cores.top_ends,
         np.asarray(positions, dtype=np.float64), camera_moves(transforms, frames, lag), lag, AREA_FACTOR)
     return with_scene > with_cluster
+
+
+def scene_patterns(result: MiningResult, patterns: np.ndarray, paths: Trajectories, n_frames: int,
+                   graphs: StackedGraphs, transforms: np.ndarray, share: float, lag: int) -> np.ndarray:
+    """(P,) bool: which of a selected cluster's ``patterns`` are background on their own, by the
+    test :func:`stays_with_scene` makes of a whole cluster: their own anchors stay with the
+    scene more often than they go with them. A cluster that moves as a whole can still hold a
+    few chains of noise structures that its object's patterns passed near (cells under noise:
+    two such patterns, mid-view while the object was out of view, gave its track 45 frames of
+    background); their boxes are not the object's. ``paths``: the patterns' trajectories, in
+    the order of ``patterns``, over a video of ``n_frames``."""
+    frames = np.arange(n_frames)
+    return np.array([stays_with_scene(result, patterns[k:k + 1], paths.dense(np.array([k]), frames)[0], graphs,
+                                      transforms, share, lag) for k in range(patterns.size)], dtype=bool)

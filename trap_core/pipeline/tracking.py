@@ -206,7 +206,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
             selected = selection(moving)
     all_labels = np.full(mined.n_st, -1, dtype=np.int64)
     all_labels[clustered] = labels
-    if robust and params.min_speed > 0 and params.own_region and selected:  # and each of their patterns' own
+    if robust and params.min_speed > 0 and params.own_region and selected:  # each selected cluster's pattern too
         rows = np.flatnonzero(np.isin(labels, selected))
         scene = scene_patterns(mined, clustered[rows], sub_paths.subset(rows), n_frames, stacked, transforms,
                                params.core_share, max(1, params.tau // 5))

@@ -325,8 +325,9 @@ def _out_from_hiding(hiding: Sequence[Track], position: np.ndarray, edge: int, n
     distances = [np.inf]
     for track in hiding:
         frames = track.frames[(track.frames >= first) & (track.frames <= last)]
-        if frames.size and frames[0] - first <= window and last - frames[-1] <= window \
-                and np.diff(frames).max(initial=0) <= window and nearest in frames:
+        in_view = (frames.size > 0 and frames[0] - first <= window and last - frames[-1] <= window
+                   and np.diff(frames).max(initial=0) <= window)
+        if in_view and nearest in frames:
             centre = box_centres(track.boxes[np.searchsorted(track.frames, nearest)][None])[0]
             distances.append(float(np.linalg.norm(position - centre)))
     return min(distances)

@@ -163,8 +163,8 @@ def test_an_object_away_across_a_chunk_border_comes_back_with_its_id(monkeypatch
 
 def test_timeline_bars_are_the_runs_of_frames(tmp_path) -> None:
     from trap_core.outputs import track_timeline
-    from trap_core.outputs.timeline import _runs
-    assert _runs(np.array([3, 4, 5, 9, 11, 12])) == [(3, 3), (9, 1), (11, 2)] and _runs(np.array([])) == []
+    from trap_core.outputs.timeline import frame_runs
+    assert frame_runs(np.array([3, 4, 5, 9, 11, 12])) == [(3, 3), (9, 1), (11, 2)] and frame_runs(np.array([])) == []
     track = _line(1, 0, 99, 0, 50)
     track = Track(1, track.frames, track.boxes, track.score, 1, np.where(np.arange(100)[:, None] < 50, 1.0, np.nan)
                   * np.ones((100, 2)))

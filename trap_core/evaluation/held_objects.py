@@ -14,6 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
+from trap_core.outputs.timeline import frame_runs
+
 Boxes = dict[int, tuple]  # frame (0-based) -> (x, y, w, h), as the scores take them
 NONE = -1  # the track's box centre lies in no object's box
 
@@ -52,14 +54,12 @@ def object_timeline(boxes_per_track: Sequence[Boxes], truth: Sequence[Boxes], n_
         held = held_objects(track, truth)
         frames = np.array(sorted(held), dtype=np.int64)
         objects = np.array([held[f] for f in frames.tolist()], dtype=np.int64)
-        for first, length, obj in _runs(frames, objects):
-            axes.broken_barh([(first + 1, length)], (row - 0.35, 0.7), linewidth=0,
-                             facecolors="0.6" if obj == NONE else colours(obj % 10))
+        for obj in np.unique(objects).tolist():  # frames are whole: a run of one object's frames holds no other
+            axes.broken_barh([(first + 1, length) for first, length in frame_runs(frames[objects == obj])],
+                             (row - 0.35, 0.7), linewidth=0, facecolors="0.6" if obj == NONE else colours(obj % 10))
     for obj, boxes in enumerate(truth):
-        frames = np.array(sorted(boxes), dtype=np.int64)
-        for first, length, _ in _runs(frames, np.zeros(frames.size, dtype=np.int64)):
-            axes.broken_barh([(first + 1, length)], (len(boxes_per_track) + obj - 0.2, 0.4), linewidth=0,
-                             facecolors=colours(obj % 10))
+        axes.broken_barh([(first + 1, length) for first, length in frame_runs(np.array(sorted(boxes), dtype=np.int64))],
+                         (len(boxes_per_track) + obj - 0.2, 0.4), linewidth=0, facecolors=colours(obj % 10))
     labels = [f"track {k + 1}" for k in range(len(boxes_per_track))]
     labels += [f"object {k + 1}" for k in range(len(truth))]
     axes.set_yticks(range(rows), labels)
@@ -74,13 +74,3 @@ def object_timeline(boxes_per_track: Sequence[Boxes], truth: Sequence[Boxes], n_
     plt.close(figure)
     return path
 
-
-def _runs(frames: np.ndarray, objects: np.ndarray) -> list[tuple[int, int, int]]:
-    """(first frame, length, object) of each run of consecutive ``frames`` (sorted) that hold one
-    object."""
-    if frames.size == 0:
-        return []
-    breaks = np.flatnonzero((np.diff(frames) > 1) | (np.diff(objects) != 0))
-    firsts = np.r_[0, breaks + 1]
-    lasts = np.r_[breaks, frames.size - 1]
-    return [(int(frames[a]), int(frames[b] - frames[a] + 1), int(objects[a])) for a, b in zip(firsts, lasts)]

@@ -29,7 +29,7 @@ def track_timeline(tracks: Sequence[Track], n_frames: int, path: str | Path,
         inferred = np.isnan(trk.points[:, 0]) if trk.points is not None else np.zeros(len(trk), dtype=bool)
         colour = np.array(track_colour(trk.track_id)) / 255
         for seen in (True, False):
-            runs = _runs(trk.frames[inferred != seen])
+            runs = frame_runs(trk.frames[inferred != seen])
             axes.broken_barh([(first + 1, length) for first, length in runs], (row - 0.35, 0.7),
                              facecolors=colour, alpha=1.0 if seen else 0.35, linewidth=0)
     for start in chunk_starts[1:]:
@@ -49,8 +49,8 @@ def track_timeline(tracks: Sequence[Track], n_frames: int, path: str | Path,
     return path
 
 
-def _runs(frames: np.ndarray) -> list[tuple[int, int]]:
-    """(first frame, length) of each run of consecutive ``frames`` (sorted)."""
+def frame_runs(frames: np.ndarray) -> list[tuple[int, int]]:
+    """(first frame, length) of each run of consecutive ``frames`` (sorted): the bars of a row."""
     if frames.size == 0:
         return []
     breaks = np.flatnonzero(np.diff(frames) > 1)

@@ -1870,6 +1870,35 @@ def test_boxes_after_an_object_left_the_view_are_dropped() -> None:
     assert end_at_exits(seen_first, 640, 480, min_gap=12).frames.tolist() == list(range(28)) + list(range(60, 65))
 
 
+def test_a_return_reached_through_a_filled_gap_is_kept_from_its_entry() -> None:
+    """An object leaves through the left border. Its track then holds something else at x=500
+    for a while, and a filled gap carries the box from there to the right border with no jump
+    (20 px steps, 40 px boxes), where the object comes back: its box lies on the border and
+    grows for three frames. The boxes from that entry on are the object; those before are not.
+    Without the growth (a box resting on the border), or with a box that grows larger than the
+    object (across much of the view), nothing after the exit is kept."""
+    from trap_core.robust import end_at_exits
+    frames = np.arange(28)
+    x = 100.0 - 5 * frames
+    leaving = np.column_stack([np.maximum(x, 0), np.full(28, 200.0), np.minimum(40.0, x + 40), np.full(28, 30.0)])
+    elsewhere = np.column_stack([np.full(10, 500.0), np.full(10, 200.0), np.full(10, 40.0), np.full(10, 30.0)])
+    filled = np.column_stack([520.0 + 20 * np.arange(4), np.full(4, 200.0), np.full(4, 40.0), np.full(4, 30.0)])
+    widths = np.r_[12.0, 20.0, 28.0, 40.0, 40.0, 40.0]
+    entry = np.column_stack([640.0 - widths - [0, 0, 0, 0, 10, 20], np.full(6, 200.0), widths, np.full(6, 30.0)])
+    boxes = np.vstack([leaving, elsewhere, filled, entry])
+    out = end_at_exits(_as_track(1, np.arange(len(boxes)), boxes), 640, 480, min_gap=12)
+    assert out.frames.tolist() == list(range(28)) + list(range(42, 48))
+    resting = boxes.copy()
+    resting[42:45, 0], resting[42:45, 2] = 600.0, 40.0
+    out = end_at_exits(_as_track(1, np.arange(len(boxes)), resting), 640, 480, min_gap=12)
+    assert out.frames.tolist() == list(range(28))
+    wide = boxes.copy()
+    wide[42:45, 2] = [60.0, 150.0, 240.0]
+    wide[42:45, 0] = 640.0 - wide[42:45, 2]
+    out = end_at_exits(_as_track(1, np.arange(len(boxes)), wide), 640, 480, min_gap=12)
+    assert out.frames.tolist() == list(range(28))
+
+
 def test_a_track_that_takes_over_where_another_ended_is_appended_to_it() -> None:
     """Track 1 holds frames 0-59 of an object moving right. Track 2 starts at frame 56 on the
     object of track 3 (repeating its boxes) and from frame 65 goes on where track 1's motion

@@ -104,7 +104,9 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     ``min_gap`` frames, or a jump of the box by more than its size: a continuation through the
     gap, :func:`trap_core.robust.continue_tracks`, can run up to the return) whose first box
     reaches the border (:func:`reaches_border`, within a quarter of the object's usual extent:
-    that box may be a sliver of it).
+    that box may be a sliver of it), or up to an entry: a box that comes onto a border and grows
+    across it over ``leaving`` frames (a filled gap can run from something else into the return
+    with no jump).
 
     Parameters
     ----------
@@ -139,6 +141,7 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     whole_before = _seen_whole_in_run(whole, starts)
     keep = np.ones(frames.size, dtype=bool)
     row = leaving - 1
+    entering[_entries(frames, sides, extent, usual, leaving)] = True
     for exit_row in _exits(frames, sides, extent, usual, whole_before, leaving).tolist():
         if exit_row < row:  # among the boxes dropped after an earlier exit
             continue
@@ -164,6 +167,25 @@ def _exits(frames: np.ndarray, sides: np.ndarray, extent: np.ndarray, usual: np.
     exit_side = ((whole_before[first] & consecutive)[:, None] & on_border & ~sides[rows + 1]
                  & (extent[rows] < usual / 2) & shrinking)
     return rows[exit_side.any(axis=1)]
+
+
+def _entries(frames: np.ndarray, sides: np.ndarray, extent: np.ndarray, usual: np.ndarray,
+             leaving: int) -> np.ndarray:
+    """Rows (increasing) whose box starts an entry on some side (:func:`end_at_exits`): the
+    box before is off that border, and over the ``leaving`` consecutive frames from it the box
+    lies on that border (``sides``, (n, 4)), its ``extent`` across it never shrinks and grows,
+    and it is never larger than ``SIZE_RATIO`` times the ``usual`` extents (an object coming in
+    shows a part of itself; a box on much of the view is not one). None with ``leaving`` 1:
+    one frame shows no growth."""
+    rows = np.arange(1, frames.size - leaving + 1) if leaving > 1 else np.zeros(0, dtype=np.int64)
+    consecutive = sliding_window_view(np.diff(frames) == 1, leaving - 1)[rows].all(axis=-1)
+    on_border = sliding_window_view(sides, leaving, axis=0)[rows].all(axis=-1)
+    growing = (sliding_window_view(np.diff(extent, axis=0) >= 0, leaving - 1, axis=0)[rows].all(axis=-1)
+               & (extent[rows + leaving - 1] > extent[rows]))
+    small = np.all(extent[:, :2] <= SIZE_RATIO * usual[:2], axis=1)
+    small = sliding_window_view(small, leaving)[rows].all(axis=-1)
+    entry = (consecutive & small)[:, None] & on_border & ~sides[rows - 1] & growing
+    return rows[entry.any(axis=1)]
 
 
 def _seen_whole_in_run(whole: np.ndarray, starts: np.ndarray) -> np.ndarray:

@@ -1865,9 +1865,39 @@ def test_boxes_after_an_object_left_the_view_are_dropped() -> None:
                                 np.r_[40.0, 40.0, 25.0, 12.0, 30.0, 40.0, 40.0], np.full(7, 30.0)])
     comes_back = _as_track(1, np.r_[frames[:28], 60:67], np.vstack([boxes[:28], entering]))
     assert end_at_exits(comes_back, 640, 480, min_gap=12).frames.tolist() == list(range(28)) + list(range(60, 67))
+    # Seen whole mid-view first, the boxes that then shrink on the border do leave (dropped after
+    # frame 64); that whole box is dropped too: the object went out on the left at frame 27, half
+    # out of view and moving out before the gap, and is not back through the border there.
     seen_first = _as_track(1, np.r_[frames[:28], 60:68], np.vstack([boxes[:28], [[300.0, 200.0, 40.0, 30.0]],
                                                                      entering]))
-    assert end_at_exits(seen_first, 640, 480, min_gap=12).frames.tolist() == list(range(28)) + list(range(60, 65))
+    assert end_at_exits(seen_first, 640, 480, min_gap=12).frames.tolist() == list(range(28)) + list(range(61, 65))
+
+
+def test_an_object_half_out_of_view_and_moving_out_when_its_track_breaks_has_left() -> None:
+    """A 40 px box moves right at 5 px a frame into the right border; its boxes there hold parts
+    of the object (on and off the border, so no run of shrinking boxes), the last one 15 px wide
+    on the border. After a 30-frame gap the track holds something mid-view: dropped, as after an
+    exit. With the boxes before the last one further out (its last box moved in), a last box
+    30 px wide (more of the object in view than out), or the box after the gap nearer a border
+    than the object's size (it may be coming back), everything is kept."""
+    from trap_core.robust import end_at_exits
+    x = 400.0 + 5 * np.arange(45)
+    boxes = np.column_stack([x, np.full(45, 200.0), np.full(45, 40.0), np.full(45, 30.0)])
+    boxes[40:] = [[604.0, 200.0, 36.0, 30.0], [610.0, 200.0, 20.0, 30.0], [615.0, 200.0, 25.0, 30.0],
+                  [618.0, 200.0, 14.0, 30.0], [625.0, 200.0, 15.0, 30.0]]
+    later = np.column_stack([np.full(10, 300.0), np.full(10, 100.0), np.full(10, 40.0), np.full(10, 30.0)])
+    frames = np.r_[np.arange(45), np.arange(75, 85)]
+    out = end_at_exits(_as_track(1, frames, np.vstack([boxes, later])), 640, 480, min_gap=12)
+    assert out.frames.tolist() == list(range(45))
+    back = boxes.copy()
+    back[41:44] = [630.0, 200.0, 10.0, 30.0]
+    assert len(end_at_exits(_as_track(1, frames, np.vstack([back, later])), 640, 480, min_gap=12)) == 55
+    wide = boxes.copy()
+    wide[44] = [610.0, 200.0, 30.0, 30.0]
+    assert len(end_at_exits(_as_track(1, frames, np.vstack([wide, later])), 640, 480, min_gap=12)) == 55
+    near = later.copy()
+    near[:, 0] = 20.0
+    assert len(end_at_exits(_as_track(1, frames, np.vstack([boxes, near])), 640, 480, min_gap=12)) == 55
 
 
 def test_a_return_reached_through_a_filled_gap_is_kept_from_its_entry() -> None:

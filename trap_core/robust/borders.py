@@ -99,8 +99,10 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     shrinking across it, and ends less than half the track's usual extent across it (the median
     of its boxes fully in view), and the next box is off that border. A body mostly out of view
     cannot be clear of the border a frame later unless it moves half its size in a frame: the
-    patterns went on with something else (noise, a neighbour) once the object was gone. Nor can
-    it come back but through the border: boxes are dropped up to a piece (after a gap of more than
+    patterns went on with something else (noise, a neighbour) once the object was gone. Where
+    its boxes hold parts of it that jump on and off the border, an exit is also seen before a
+    gap, in a box half out of view and moving out (:func:`_gone_out`). Nor can it come back
+    but through the border: boxes are dropped up to a piece (after a gap of more than
     ``min_gap`` frames, or a jump of the box by more than its size: a continuation through the
     gap, :func:`trap_core.robust.continue_tracks`, can run up to the return) whose first box
     reaches the border (:func:`reaches_border`, within a quarter of the object's usual extent:
@@ -142,7 +144,10 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     keep = np.ones(frames.size, dtype=bool)
     row = leaving - 1
     entering[_entries(frames, sides, extent, usual, leaving)] = True
-    for exit_row in _exits(frames, sides, extent, usual, whole_before, leaving).tolist():
+    exits = np.union1d(_exits(frames, sides, extent, usual, whole_before, leaving),
+                       _gone_out(frames, boxes, sides, extent, usual, whole_before, leaving, min_gap,
+                                 _clear_of_borders(boxes, width, height, usual[:2])))
+    for exit_row in exits.tolist():
         if exit_row < row:  # among the boxes dropped after an earlier exit
             continue
         back = np.flatnonzero(entering[exit_row + 1:])
@@ -167,6 +172,34 @@ def _exits(frames: np.ndarray, sides: np.ndarray, extent: np.ndarray, usual: np.
     exit_side = ((whole_before[first] & consecutive)[:, None] & on_border & ~sides[rows + 1]
                  & (extent[rows] < usual / 2) & shrinking)
     return rows[exit_side.any(axis=1)]
+
+
+def _gone_out(frames: np.ndarray, boxes: np.ndarray, sides: np.ndarray, extent: np.ndarray, usual: np.ndarray,
+              whole_before: np.ndarray, leaving: int, min_gap: int, inside: np.ndarray) -> np.ndarray:
+    """Rows (increasing) whose box ends an exit seen through noisy boxes (:func:`end_at_exits`):
+    a gap of more than ``min_gap`` frames follows, the box lies on a border with under half the
+    ``usual`` extent across it, its centre has moved toward that border since the box ``leaving``
+    rows before (in the same run), a whole box came before in the run (``whole_before``), and
+    the box after the gap lies ``inside`` the view (per row: clear of every border by the usual
+    extent; nearer, it may be the object coming back). Boxes of parts of an object (its legs,
+    its head) jump on and off the border as it leaves, so the shrinking run of :func:`_exits`
+    is not seen, but an object half out of view and moving out is gone when its patterns are."""
+    gap_after = np.diff(frames) > min_gap
+    run = np.cumsum(np.r_[True, gap_after])
+    rows = np.flatnonzero(gap_after)
+    rows = rows[(rows >= leaving) & whole_before[rows] & inside[rows + 1]]
+    rows = rows[run[rows - leaving] == run[rows]]
+    earlier = rows - leaving
+    step = box_centres(boxes[rows]) - box_centres(boxes[earlier])
+    outward = np.column_stack([-step[:, 0], -step[:, 1], step[:, 0], step[:, 1]]) > 0
+    gone = sides[rows] & (extent[rows] < usual / 2) & outward
+    return rows[gone.any(axis=1)]
+
+
+def _clear_of_borders(boxes: np.ndarray, width: float, height: float, margin: np.ndarray) -> np.ndarray:
+    """(n,) bool: whether boxes ``(x, y, w, h)`` lie at least ``margin`` (x, y) px from every border."""
+    x, y, w, h = boxes.T
+    return (x >= margin[0]) & (y >= margin[1]) & (x + w <= width - margin[0]) & (y + h <= height - margin[1])
 
 
 def _entries(frames: np.ndarray, sides: np.ndarray, extent: np.ndarray, usual: np.ndarray,

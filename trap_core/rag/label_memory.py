@@ -16,6 +16,9 @@ noise does not move the labels of regions that appear). The gain is measured aga
 carried since regions appeared, not multiplied frame to frame, so its error does not
 accumulate while the scene stays; an object seen again under other light gets its former
 labels back, and its patterns are the same structures (what rejoining fragments needs).
+Where the camera moves, regions come and go and those that appear are carried under a gain
+that lags the light by up to 1 %: the error then grows (README, label memory;
+``benchmarks/label_gain.py``).
 """
 from __future__ import annotations
 

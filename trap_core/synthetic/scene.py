@@ -322,12 +322,18 @@ def render(cfg: SceneConfig) -> Iterator[RenderedFrame]:
             _draw(frame, owner, world.stamps[obj], world.object_colours[obj], world.paths[obj, t], obj)
         boxes = tuple(_visible_box(owner, obj) for obj in range(cfg.objects))
         if cfg.illumination or cfg.noise:
-            gain = 1.0 + cfg.illumination * np.sin(2 * np.pi * t / max(cfg.frames, 2) * 2)
+            gain = light_gain(cfg, t)
             shaded = frame.astype(np.float32) * gain
             if cfg.noise:
                 shaded += noise_rng.normal(0, cfg.noise, size=frame.shape).astype(np.float32)
             frame = np.clip(np.rint(shaded), 0, 255).astype(np.uint8)
         yield RenderedFrame(t, frame, boxes, owner)
+
+
+def light_gain(cfg: SceneConfig, t: int) -> float:
+    """The gain of the light on frame ``t`` of ``cfg``'s video (1 where it has no
+    ``illumination`` swing): two slow swings over the video."""
+    return 1.0 + cfg.illumination * np.sin(2 * np.pi * t / max(cfg.frames, 2) * 2)
 
 
 def _turned_view(world: np.ndarray, cx: int, cy: int, width: int, height: int, cfg: SceneConfig,

@@ -145,7 +145,7 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     row = leaving - 1
     entering[_entries(frames, sides, extent, usual, leaving)] = True
     exits = np.union1d(_exits(frames, sides, extent, usual, whole_before, leaving),
-                       _gone_out(frames, boxes, sides, extent, usual, whole_before, leaving, min_gap,
+                       _gone_out(boxes, sides, extent, usual, starts, whole_before, leaving,
                                  _clear_of_borders(boxes, width, height, usual[:2])))
     for exit_row in exits.tolist():
         if exit_row < row:  # among the boxes dropped after an earlier exit
@@ -174,19 +174,18 @@ def _exits(frames: np.ndarray, sides: np.ndarray, extent: np.ndarray, usual: np.
     return rows[exit_side.any(axis=1)]
 
 
-def _gone_out(frames: np.ndarray, boxes: np.ndarray, sides: np.ndarray, extent: np.ndarray, usual: np.ndarray,
-              whole_before: np.ndarray, leaving: int, min_gap: int, inside: np.ndarray) -> np.ndarray:
+def _gone_out(boxes: np.ndarray, sides: np.ndarray, extent: np.ndarray, usual: np.ndarray, starts: np.ndarray,
+              whole_before: np.ndarray, leaving: int, inside: np.ndarray) -> np.ndarray:
     """Rows (increasing) whose box ends an exit seen through noisy boxes (:func:`end_at_exits`):
-    a gap of more than ``min_gap`` frames follows, the box lies on a border with under half the
+    a gap follows (the next row ``starts`` a run), the box lies on a border with under half the
     ``usual`` extent across it, its centre has moved toward that border since the box ``leaving``
     rows before (in the same run), a whole box came before in the run (``whole_before``), and
     the box after the gap lies ``inside`` the view (per row: clear of every border by the usual
     extent; nearer, it may be the object coming back). Boxes of parts of an object (its legs,
     its head) jump on and off the border as it leaves, so the shrinking run of :func:`_exits`
     is not seen, but an object half out of view and moving out is gone when its patterns are."""
-    gap_after = np.diff(frames) > min_gap
-    run = np.cumsum(np.r_[True, gap_after])
-    rows = np.flatnonzero(gap_after)
+    run = np.cumsum(starts)
+    rows = np.flatnonzero(starts[1:])
     rows = rows[(rows >= leaving) & whole_before[rows] & inside[rows + 1]]
     rows = rows[run[rows - leaving] == run[rows]]
     earlier = rows - leaving

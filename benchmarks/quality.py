@@ -35,6 +35,7 @@ import pickle
 import re
 import time
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -549,57 +550,98 @@ def _pictures(scene: dict, tracks: list[Track], truth: list[dict[int, tuple]], n
     object_timeline([boxes_by_frame(t) for t in tracks], truth, n_frames, f"{stem}_objects.png", stem.name)
 
 
+TABLE_HEAD = "| video | tracks / objects | per object P/R % | MOTA | IDF1 | HOTA | s |\n|---|---|---|---|---|---|---|"
+
+
+class VideoScore(NamedTuple):
+    """One video tracked and scored: its table row, and what each set's summary adds up."""
+
+    row: str            # | label | tracks / objects | per object P/R % | MOTA | IDF1 | HOTA | s |
+    products: list[float]  # per object: box precision x recall
+    good: list[bool]    # per object: at 90/90 or better (as printed)
+    mota: float
+    id_f1: float
+
+
+def slug(label: str) -> str:
+    """A video's label as a file name stem."""
+    return re.sub(r"[^0-9A-Za-z]+", "_", label).strip("_")
+
+
+def score_video(label: str, scene: dict, segmentation: str, cache: Path, overrides: dict,
+                pictures: Path | None = None) -> VideoScore:
+    """Track one video's graphs (:func:`_graphs`) with the defaults and ``overrides``, without being
+    told the number of objects, and score its tracks against the ground truth; with ``pictures``
+    (a path stem), also draw them (:func:`_pictures`)."""
+    graphs, truth = _graphs(scene, segmentation, cache, overrides)
+    params = TrapParams.from_mapping({"segmentation": segmentation, **overrides})
+    start = time.perf_counter()
+    result = track(graphs, params)
+    seconds = time.perf_counter() - start
+    if pictures:
+        _pictures(scene, result.tracks, truth, len(graphs), pictures)
+    boxes = [boxes_by_frame(t) for t in result.tracks]
+    objects = match_objects(boxes, truth)
+    scores = mot_measures(boxes, truth)
+    per_object = ", ".join(f"{100 * p:.0f}/{100 * r:.0f}" for _, p, r in objects)
+    row = (f"| {label} | {len(result.tracks)} / {len(truth)} | {per_object} | {scores['MOTA']:.2f} | "
+           f"{scores['IDF1']:.2f} | {scores['HOTA']:.2f} | {seconds:.1f} |")
+    return VideoScore(row, [p * r for _, p, r in objects], [p >= 0.895 and r >= 0.895 for _, p, r in objects],
+                      scores["MOTA"], scores["IDF1"])
+
+
+def set_summary(name: str, scores: list[VideoScore]) -> str:
+    """The summary line of a set of videos: mean precision x recall, objects at 90/90, mean MOTA and IDF1."""
+    products = [product for score in scores for product in score.products]
+    good = [good for score in scores for good in score.good]
+    return (f"{name}: mean P*R {np.mean(products):.3f}, objects at 90/90 {sum(good)}/{len(good)}, "
+            f"mean MOTA {np.mean([score.mota for score in scores]):.2f}, "
+            f"mean IDF1 {np.mean([score.id_f1 for score in scores]):.2f}")
+
+
 def check_arguments(parser: argparse.ArgumentParser, sets: str, overrides: list[tuple[str, object]]) -> None:
     """End the run in one line (``parser.error``) on an unknown set or a bad parameter, before any
     video is made, rather than with a traceback at the first video that reaches it."""
     unknown = [name for name in sets.split(",") if name not in SETS]
     if unknown:
         parser.error(f"unknown set {unknown[0]!r}: one of {', '.join(SETS)}")
+    check_overrides(parser, overrides)
+
+
+def check_overrides(parser: argparse.ArgumentParser, overrides: list[tuple[str, object]]) -> None:
+    """End the run in one line (``parser.error``) on a bad parameter among ``overrides``."""
     try:
         TrapParams.from_mapping(dict(overrides))
     except ParameterError as error:
         parser.error(str(error))
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--sets", default=",".join(SETS), help="comma-separated: " + ", ".join(SETS))
+def add_run_arguments(parser: argparse.ArgumentParser) -> None:
+    """The options of a run over synthetic videos: the graph cache, pictures and parameter overrides."""
     parser.add_argument("--cache", type=Path, default=Path.home() / ".cache" / "trap_ros" / "quality")
     parser.add_argument("--pictures", type=Path, metavar="DIR",
                         help="also write each video's contact sheet, timeline of tracks and of the objects they "
                              "hold here")
     parser.add_argument("-p", dest="overrides", action="append", default=[], type=parameter_assignment,
                         metavar="NAME:=VALUE", help="parameter for every run (as process_bag's -p)")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sets", default=",".join(SETS), help="comma-separated: " + ", ".join(SETS))
+    add_run_arguments(parser)
     args = parser.parse_args()
     check_arguments(parser, args.sets, args.overrides)
     all_good: list[bool] = []
     for name in args.sets.split(","):
-        videos = SETS[name]
-        print(f"\n### {name}\n\n| video | tracks / objects | per object P/R % | MOTA | IDF1 | HOTA | s |")
-        print("|---|---|---|---|---|---|---|")
-        products, good, mota, id_f1 = [], [], [], []
-        for label, scene, segmentation in videos:
-            graphs, truth = _graphs(scene, segmentation, args.cache, dict(args.overrides))
-            params = TrapParams.from_mapping({"segmentation": segmentation, **dict(args.overrides)})
-            start = time.perf_counter()
-            result = track(graphs, params)
-            seconds = time.perf_counter() - start
-            if args.pictures:
-                slug = re.sub(r"[^0-9A-Za-z]+", "_", label).strip("_")
-                _pictures(scene, result.tracks, truth, len(graphs), args.pictures / f"{name}_{slug}")
-            boxes = [boxes_by_frame(t) for t in result.tracks]
-            objects = match_objects(boxes, truth)
-            scores = mot_measures(boxes, truth)
-            products += [p * r for _, p, r in objects]
-            good += [p >= 0.895 and r >= 0.895 for _, p, r in objects]  # 90/90 as printed
-            mota.append(scores["MOTA"])
-            id_f1.append(scores["IDF1"])
-            per_object = ", ".join(f"{100 * p:.0f}/{100 * r:.0f}" for _, p, r in objects)
-            print(f"| {label} | {len(result.tracks)} / {len(truth)} | {per_object} | {scores['MOTA']:.2f} | "
-                  f"{scores['IDF1']:.2f} | {scores['HOTA']:.2f} | {seconds:.1f} |", flush=True)
-        print(f"\n{name}: mean P*R {np.mean(products):.3f}, objects at 90/90 {sum(good)}/{len(good)}, "
-              f"mean MOTA {np.mean(mota):.2f}, mean IDF1 {np.mean(id_f1):.2f}")
-        all_good += good
+        print(f"\n### {name}\n\n{TABLE_HEAD}")
+        scores = []
+        for label, scene, segmentation in SETS[name]:
+            scores.append(score_video(label, scene, segmentation, args.cache, dict(args.overrides),
+                                      args.pictures / f"{name}_{slug(label)}" if args.pictures else None))
+            print(scores[-1].row, flush=True)
+        print(f"\n{set_summary(name, scores)}")
+        all_good += [good for score in scores for good in score.good]
     print(f"\nall sets: objects at 90/90 {sum(all_good)}/{len(all_good)}")
 
 

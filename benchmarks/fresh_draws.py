@@ -50,7 +50,7 @@ def drawn_scenes(generator: int, videos: int) -> list[tuple[str, dict]]:
 
 def scene_label(scene: dict) -> str:
     """A drawn scene in the words of ``quality.py``'s labels."""
-    shape = {"car": "car", "person": "person", "disc": "disc", MIXED: "mixed shapes"}[scene["shape"]]
+    shape = "mixed shapes" if scene["shape"] == MIXED else scene["shape"]
     scale = "" if scene["object_scale"] == 1.0 else f" {scene['object_scale']:g}x"
     parts = [("identical" if scene["identical"] else "distinct"), shape, f"{scene['objects']} objects{scale}",
              f"{scene['width']}x{scene['height']}", f"{scene['frames']} frames"]

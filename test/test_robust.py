@@ -2326,6 +2326,19 @@ def test_patterns_cut_short_by_the_videos_end_are_kept_only_where_no_long_one_go
     np.testing.assert_array_equal(alone_at_ends(paths, np.zeros(4, dtype=bool), sizes), [False] * 4)
 
 
+def test_a_selected_cluster_whose_patterns_all_stay_with_the_scene_is_no_track(monkeypatch) -> None:
+    """Each selected cluster's patterns whose own regions stay with the scene leave its track; a
+    cluster left with none held nothing of an object. It used to reach the track rules empty, and
+    the run ended in a ValueError (met on 2026-11-29 with a variant of rejoining, not kept)."""
+    import trap_core.pipeline.tracking as tracking
+    params = TrapParams(segmentation="colour")
+    graphs, _ = synthetic_graphs(SceneConfig(frames=120, seed=0, **PRESETS["anim2"]), params)
+    assert track(graphs, params).tracks  # three objects, tracked
+    monkeypatch.setattr(tracking, "scene_patterns", lambda mined, patterns, *rest: np.ones(patterns.size, dtype=bool))
+    result = track(graphs, params)
+    assert result.tracks == [] and result.selected == []
+
+
 def test_chains_of_noise_born_structures_whose_own_regions_stay_with_the_scene_are_no_tracks() -> None:
     """Two discs over gravel with sensor noise (320x240, 150 frames): noise makes and unmakes
     structures between the stones, chains of them drift over the scene and pass every motion test

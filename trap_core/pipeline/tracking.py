@@ -211,6 +211,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         scene = scene_patterns(mined, clustered[rows], sub_paths.subset(rows), n_frames, stacked, transforms,
                                params.core_share, max(1, params.tau // 5))
         all_labels[clustered[rows[scene]]] = -1
+        selected = [c for c in selected if (all_labels == c).any()]  # none left: all of it was the scene
     if robust and params.one_object:
         all_labels = hand_to_owners(mined, all_labels, selected, stacked)
     clusters = Clusters(summary, selected, moving, labels, mined.st_pattern[clustered], occurrences)

@@ -24,13 +24,13 @@ import quality  # noqa: E402  (the benchmark sets and their graph cache)
 
 from trap_core.pipeline import TrapParams  # noqa: E402
 from trap_core.rag import LabelMemory  # noqa: E402
-from trap_core.synthetic import SceneConfig, light_gain  # noqa: E402
+from trap_core.synthetic import light_gain  # noqa: E402
 
 
 def gain_errors(scene: dict, segmentation: str, cache: Path) -> np.ndarray:
     """Per frame of the video: the relative error of the memory's gain in its worst channel."""
     graphs, _ = quality._graphs(scene, segmentation, cache)
-    config = SceneConfig(**{key: value for key, value in scene.items() if key not in ("compressed", "encoding")})
+    config = quality._scene_config(scene)[0]
     memory = LabelMemory(TrapParams.from_mapping({"segmentation": segmentation}).colour_bins)
     errors = np.empty(len(graphs))
     for t, graph in enumerate(graphs):

@@ -1205,6 +1205,28 @@ def test_a_track_ending_at_the_border_follows_its_object_out_of_view() -> None:
     assert np.isnan(out.points[20:]).all()
 
 
+def test_a_fast_track_ending_just_short_of_the_border_follows_its_object_out_with_a_lead() -> None:
+    """A fast object's patterns can end a few frames before its box touches the border (the
+    regions between it and the border vanish first): with ``lead`` frames, a box its velocity
+    brings to the border within them counts as at the border. A slow track ending as far from
+    it is not continued: its object stopped being seen in the view."""
+    from trap_core.clustering import Track
+    from trap_core.robust import continue_to_border
+    frames = np.arange(18)  # 80x60, 10 px a frame to the left; last box x = 38 (the border's reach: 20 px)
+    boxes = np.column_stack([208.0 - 10 * frames, np.full(18, 100.0), np.full(18, 80.0), np.full(18, 60.0)])
+    fast = Track(1, frames, boxes, np.ones(18), 1, None)
+    assert continue_to_border(fast, 100, 400, 300, lead=0) is fast
+    out = continue_to_border(fast, 100, 400, 300, lead=5)
+    assert out.frames.tolist() == list(range(29))  # x = -72 at frame 28: its right 8 px in view
+    np.testing.assert_allclose(out.boxes[22], [0, 100, 68, 60])  # x = -12: its right 68 px in view
+    slow = Track(2, frames, np.column_stack([55.0 - frames, boxes[:, 1:]]), np.ones(18), 2, None)
+    assert continue_to_border(slow, 100, 400, 300, lead=5) is slow  # x = 38, 5 px on: 33 > 20
+    entering = boxes[::-1].copy()  # moving right from x = 38; its first box a 7 px sliver 2 px in
+    entering[0] = (2.0, 100.0, 7.0, 60.0)
+    sliver = Track(3, frames + 50, entering, np.ones(18), 3, None)
+    assert continue_to_border(sliver, 100, 400, 300, lead=5) is sliver  # cut already: its own size's test
+
+
 def test_an_object_back_in_view_for_the_videos_last_20_frames_is_tracked_there() -> None:
     """Object 3 leaves the view and comes back 20 frames before the video ends: too few for a
     pattern of freq_st_min (36) frames. With the patterns the end cut short kept (freq_st_cut),

@@ -114,7 +114,8 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
     if robust and params.one_track:
         tracks = _one_track_per_object(tracks, clusters, tracks_of, n_frames, view, motion_window)
     if robust and params.to_border:
-        tracks = [continue_to_border(t, n_frames, width, height, motion_window, 2 * params.tau) for t in tracks]
+        tracks = [continue_to_border(t, n_frames, width, height, motion_window, 2 * params.tau,
+                                      max(1, params.tau // 5)) for t in tracks]
     if robust and params.one_track and params.rejoin and len(tracks) > 1:
         tracks = join_returns(tracks, width, height, _lookalikes(tracks, clusters, tracks_of.graphs))
     if robust and params.groups:  # who is who is settled: placed boxes back on their track's path

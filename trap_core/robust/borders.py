@@ -6,7 +6,8 @@ change, its patterns stop being found while part of it is still visible, and the
 early (the mirror image for an object that enters). The part still in view is where the object
 would be had it kept its motion: its box when last fully in view moved at its velocity over
 those frames, clipped to the image. A track is continued so when its box reaches the border
-(:func:`reaches_border`) where it ends (starts), for as long as that box overlaps the image, at
+(:func:`reaches_border`) where it ends (starts), or would a few frames on at its velocity, for
+as long as that box overlaps the image, at
 most ``max_frames``, and never into frames the track already covers. Such frames have no
 patterns of their own (:func:`with_inferred`). Once an object has left, the boxes its track goes
 on with inside the view are something else (:func:`end_at_exits`).
@@ -23,7 +24,7 @@ SIZE_RATIO = 1.25  # a box in view this much smaller than the track's usual one 
 
 
 def continue_to_border(track: Track, n_frames: int, width: float, height: float, span: int = 12,
-                       max_frames: int = 50) -> Track:
+                       max_frames: int = 50, lead: int = 0) -> Track:
     """The track with boxes for the frames where its object, leaving or entering the view at
     a run's end or start, is still partly visible.
 
@@ -37,6 +38,12 @@ def continue_to_border(track: Track, n_frames: int, width: float, height: float,
         whose median box is the object's size; at least 3 are needed.
     max_frames : int
         Frames at most added at one end of a run.
+    lead : int
+        A run's end (start) whose box is whole and of about the object's size also counts as at
+        the border where its velocity brings it there within this many frames: a fast object's
+        patterns can stop a few frames before its box touches the border (the background
+        regions between them vanish first), and its track would end unseen leaving. A box
+        already cut by the border keeps the test on its own size.
 
     Returns
     -------
@@ -60,8 +67,6 @@ def continue_to_border(track: Track, n_frames: int, width: float, height: float,
         before = frames[ends[run - 1]] if run > 0 else -1
         after = frames[starts[run + 1]] if run + 1 < starts.size else n_frames
         for edge, step, limit in ((last, 1, after), (first, -1, before)):
-            if not at_border[edge]:
-                continue
             inward = np.arange(edge, first - 1, -1) if step == 1 else np.arange(edge, last + 1)
             reference = inward[whole[inward]][:span]
             if reference.size < 3:
@@ -69,6 +74,9 @@ def continue_to_border(track: Track, n_frames: int, width: float, height: float,
             centre = box_centres(boxes[reference])
             velocity, intercept = np.polyfit(frames[reference], centre, 1)
             size = np.median(boxes[reference, 2:], axis=0)
+            ahead = boxes[edge] + np.r_[velocity * step * lead, 0.0, 0.0]
+            if not (at_border[edge] or whole[edge] and reaches_border(ahead[None], width, height)[0]):
+                continue
             continued = []
             for frame in range(frames[edge] + step, frames[edge] + step * (max_frames + 2), step):
                 x, y = velocity * frame + intercept - size / 2

@@ -2203,6 +2203,25 @@ def test_a_piece_of_a_track_on_another_tracks_object_is_dropped() -> None:
         list(range(40))
 
 
+def test_a_dropped_piece_that_held_the_whole_object_lends_its_boxes_to_the_track_on_a_part() -> None:
+    """Track 1 holds a 24x45 object, track 2 a 10x45 strip of it (2.4 times smaller, its centre
+    in track 1's box) over the same 100 frames. Track 1 is taken first and repeats track 2: its
+    piece goes, and track 2 takes its boxes. Not where the piece spans fewer than ``min_frames``
+    frames, nor where its boxes are over 4 times larger (a stretch of the scene around the part)."""
+    from trap_core.robust import drop_repeated_pieces
+    t = np.arange(100, dtype=float)
+    whole = np.column_stack([31 + t, np.full(100, 160.0), np.full(100, 24.0), np.full(100, 45.0)])
+    part = whole * [1.0, 1.0, 0.0, 1.0] + [12.0, 0.0, 10.0, 0.0]
+    tracks = [_as_track(1, np.arange(100), whole), _as_track(2, np.arange(100), part)]
+    out = drop_repeated_pieces(tracks, 12, min_frames=25)
+    assert [t.track_id for t in out] == [2]
+    np.testing.assert_array_equal(out[0].boxes, whole)
+    np.testing.assert_array_equal(drop_repeated_pieces(tracks, 12, min_frames=150)[0].boxes, part)
+    scene = whole * [1.0, 1.0, 0.0, 1.0] + [-20.0, 0.0, 60.0, 0.0]  # 60x45: 6 times the strip
+    out = drop_repeated_pieces([_as_track(1, np.arange(100), scene), tracks[1]], 12, min_frames=25)
+    np.testing.assert_array_equal(out[0].boxes, part)
+
+
 def test_a_track_whose_pieces_change_size_keeps_the_sizes_it_holds_long_enough() -> None:
     """Three tracks of three pieces each (frames 0-59, 110-209, 260-329). A chain of background
     regions of 40x30, 200x120 and 80x60 px holds no size for 120 frames: dropped. A track at

@@ -138,7 +138,7 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
     spare = spare[~np.isin(spare, clusters.selected)]
     tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, tracks_of)
     tracks = drop_shared_stretches(tracks, n_frames, params.tau, motion_window)
-    tracks = drop_repeated_pieces(tracks, motion_window)
+    tracks = drop_repeated_pieces(tracks, motion_window, min_frames=params.tau)
     tracks = [t for t in (drop_stray_pieces(t, n_frames, motion_window, params.tau) for t in tracks) if len(t)]
     tracks = [end_at_exits(t, width, height, motion_window) for t in tracks]
     tracks = continue_tracks(tracks, summary, spare, n_frames, width, height, motion_window, params.eps, tracks_of)

@@ -7,10 +7,10 @@ early (the mirror image for an object that enters). The part still in view is wh
 would be had it kept its motion: its box when last fully in view moved at its velocity over
 those frames, clipped to the image. A track is continued so when its box reaches the border
 (:func:`reaches_border`) where it ends (starts), or would a few frames on at its velocity, for
-as long as that box overlaps the image, at
-most ``max_frames``, and never into frames the track already covers. Such frames have no
-patterns of their own (:func:`with_inferred`). Once an object has left, the boxes its track goes
-on with inside the view are something else (:func:`end_at_exits`).
+as long as that box overlaps the image, at most ``max_frames``, and never into frames the track
+already covers. Such frames have no patterns of their own (:func:`with_inferred`). Once an
+object has left, the boxes its track goes on with inside the view are something else
+(:func:`end_at_exits`).
 """
 from __future__ import annotations
 

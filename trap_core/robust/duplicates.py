@@ -183,7 +183,7 @@ def drop_shared_stretches(tracks: Sequence[Track], n_frames: int, min_frames: in
 
 
 def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float = 0.5, min_inside: float = 0.9,
-                         min_share: float = 0.8) -> list[Track]:
+                         min_share: float = 0.8, min_frames: int = 0) -> list[Track]:
     """Tracks without pieces that repeat other tracks' boxes; tracks left empty are dropped.
 
     A piece is a run of a track's frames without a gap of more than ``min_gap`` frames, nor a
@@ -197,7 +197,9 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
     ``HOLE`` frames where jitter parts the boxes count as held, as in a shared stretch: a track
     that held one object and then, with no jump, another (two objects it went along with, each
     tracked) was kept at 78 % of its frames held. Tracks are taken in order, each against the
-    others as left.
+    others as left. A dropped piece spanning ``min_frames`` frames or more (0: none) that held
+    the whole of an object another track holds a part of gives that track its boxes
+    (:func:`_lend_whole`).
     """
     out = list(tracks)
     for slot, track in enumerate(out):
@@ -206,8 +208,43 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
         for rows in track_pieces(track.frames, min_gap, track.boxes):
             if np.mean(_holes_bridged(repeated[rows])) >= min_share:
                 keep[rows] = False
+                if min_frames and track.frames[rows[-1]] - track.frames[rows[0]] >= min_frames:
+                    _lend_whole(out, slot, rows)
         out[slot] = in_rows(track, keep)
     return [t for t in out if len(t)]
+
+
+# A dropped piece whose boxes are this many times the area of those it repeats (both ends
+# included) holds the whole of their object; larger, it holds a stretch of the scene around it.
+WHOLE_AREA = (1.5, 4.0)
+
+
+def _lend_whole(tracks: list[Track], slot: int, rows: np.ndarray) -> None:
+    """Where another track holds a part of what a dropped piece (``rows`` of track ``slot``)
+    holds, in at least half the piece's frames (its box's centre in the piece's box, which is
+    :data:`WHOLE_AREA` times larger), that track takes the piece's boxes in those frames (in
+    place; of the tracks so placed, the one with most such frames): the piece held the whole
+    object, the track a part of it."""
+    piece = tracks[slot]
+    frames, boxes = piece.frames[rows], piece.boxes[rows]
+    best, best_part = -1, np.zeros(0, dtype=bool)
+    for other, track in enumerate(tracks):
+        if other == slot:
+            continue
+        _, mine, theirs = np.intersect1d(frames, track.frames, assume_unique=True, return_indices=True)
+        with np.errstate(divide="ignore", invalid="ignore"):  # a box of no area holds no part
+            ratio = boxes[mine, 2] * boxes[mine, 3] / (track.boxes[theirs, 2] * track.boxes[theirs, 3])
+        part = np.zeros(frames.size, dtype=bool)
+        part[mine] = (centre_inside(boxes[mine], track.boxes[theirs]) & (ratio >= WHOLE_AREA[0])
+                      & (ratio <= WHOLE_AREA[1]))
+        if part.sum() > best_part.sum():
+            best, best_part = other, part
+    if best < 0 or np.mean(best_part) < 0.5:
+        return
+    other = tracks[best]
+    lent = other.boxes.copy()
+    lent[np.searchsorted(other.frames, frames[best_part])] = boxes[best_part]
+    tracks[best] = dataclasses.replace(other, boxes=lent)
 
 
 def shared_stretches(boxes: np.ndarray, other: np.ndarray, min_frames: int, min_iou: float,

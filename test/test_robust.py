@@ -1713,7 +1713,9 @@ def test_lookalikes_travelling_together_keep_their_tracks_when_the_motion_around
 def test_a_track_that_starts_late_is_continued_back_by_the_cluster_that_led_to_its_start() -> None:
     """The track holds frames 40-99 of an object moving right; cluster 0 covers frames 0-37
     where that motion, read back, puts the object; cluster 1 the same frames 185 px away.
-    Cluster 0's boxes are put before the track's start; cluster 1 alone gives nothing."""
+    Cluster 0's boxes are put before the track's start; cluster 1 alone gives nothing. Where
+    another track held the object up to frame 33, the track is not continued back: the object
+    was handed over (:func:`join_handovers` joins them)."""
     from trap_core.clustering import summarise
     from trap_core.robust import continue_tracks
     t = np.arange(100, dtype=float)
@@ -1729,6 +1731,9 @@ def test_a_track_that_starts_late_is_continued_back_by_the_cluster_that_led_to_i
     np.testing.assert_allclose(out[0].boxes[:38], boxes[:38])
     assert len(continue_tracks([late], summary, np.array([1]), 100, 640, 480, 12, 40.0,
                                built.__getitem__)[0]) == 60
+    earlier = _as_track(2, np.arange(34), boxes[:34])
+    out = continue_tracks([late, earlier], summary, np.array([0]), 100, 640, 480, 12, 40.0, built.__getitem__)
+    assert [len(t) for t in out] == [60, 34]
 
 
 def test_a_cluster_that_hops_between_objects_continues_each_where_it_holds_it() -> None:

@@ -64,7 +64,11 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     takes it out of the view within ``window`` frames, only the candidate's boxes up to the first
     one clear of the border are appended (the object is gone after that). Back in time, read
     first for last: a track whose cluster began late (its object's first patterns went to a
-    cluster too short to be selected) gets that cluster's boxes before its start.
+    cluster too short to be selected) gets that cluster's boxes before its start, unless another
+    track ends within ``window`` frames before that start, within ``reach`` of where the piece's
+    motion read back puts it: the object was tracked up to there (a handover, which
+    :func:`join_handovers` joins), and a candidate that comes that close elsewhere holds
+    something else.
     """
     out = list(tracks)
     lent = np.zeros(summary.covered.shape, dtype=bool)  # (cluster, frame) whose box went to a track
@@ -106,6 +110,8 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
     lo, hi = (limit + 1, edge) if backward else (edge + 1, limit)
     others = [t for k, t in enumerate(tracks) if k != slot]
     edge_box = current.boxes[current.frames == edge]
+    if backward and _handed_over(others, edge, velocity, origin, window, reach):
+        return None
     hiding = [t for t in others if box_iou(edge_box, box_path(t, summary.covered.shape[1])[edge])[0] > 0]
     near = []
     for cluster in candidates.tolist():
@@ -139,6 +145,17 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
                 follow = in_rows(follow, np.logical_and.accumulate(at_border))
         return follow, cluster
     return None
+
+
+def _handed_over(others: Sequence[Track], start: int, velocity: np.ndarray, origin: np.ndarray, window: int,
+                 reach: float) -> bool:
+    """Whether one of the ``others`` tracks ends at most ``window`` frames before ``start`` (a
+    piece's first frame) with its last box centre at most ``reach`` px from where the piece's
+    motion, read back (``origin + velocity * frame``), puts it: the piece's object was tracked up
+    to there, and :func:`join_handovers` joins the two."""
+    return any(start - window <= int(t.frames[-1]) < start
+               and float(np.linalg.norm(box_centres(t.boxes[-1:])[0] - (origin + velocity * t.frames[-1]))) <= reach
+               for t in others)
 
 
 def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: float, min_iou: float = 0.5

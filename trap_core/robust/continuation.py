@@ -67,8 +67,7 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     cluster too short to be selected) gets that cluster's boxes before its start, unless another
     track ends within ``window`` frames before that start, within ``reach`` of where the piece's
     motion read back puts it: the object was tracked up to there (a handover, which
-    :func:`join_handovers` joins), and a candidate that comes that close elsewhere holds
-    something else.
+    :func:`join_handovers` joins), and a spare cluster before the start holds something else.
     """
     out = list(tracks)
     lent = np.zeros(summary.covered.shape, dtype=bool)  # (cluster, frame) whose box went to a track

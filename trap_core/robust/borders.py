@@ -67,6 +67,8 @@ def continue_to_border(track: Track, n_frames: int, width: float, height: float,
         before = frames[ends[run - 1]] if run > 0 else -1
         after = frames[starts[run + 1]] if run + 1 < starts.size else n_frames
         for edge, step, limit in ((last, 1, after), (first, -1, before)):
+            if not (at_border[edge] or lead and whole[edge]):  # off the border: a whole box, its velocity read below
+                continue
             inward = np.arange(edge, first - 1, -1) if step == 1 else np.arange(edge, last + 1)
             reference = inward[whole[inward]][:span]
             if reference.size < 3:
@@ -75,7 +77,7 @@ def continue_to_border(track: Track, n_frames: int, width: float, height: float,
             velocity, intercept = np.polyfit(frames[reference], centre, 1)
             size = np.median(boxes[reference, 2:], axis=0)
             ahead = boxes[edge] + np.r_[velocity * step * lead, 0.0, 0.0]
-            if not (at_border[edge] or whole[edge] and reaches_border(ahead[None], width, height)[0]):
+            if not (at_border[edge] or reaches_border(ahead[None], width, height)[0]):
                 continue
             continued = []
             for frame in range(frames[edge] + step, frames[edge] + step * (max_frames + 2), step):

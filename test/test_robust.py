@@ -2037,6 +2037,34 @@ def test_with_two_lookalikes_out_of_view_at_once_neither_takes_the_one_that_come
     assert len(out) == 1 and out[0].frames.tolist() == seen.tolist()
 
 
+def test_a_spare_cluster_that_brings_back_an_object_that_left_continues_its_track() -> None:
+    """A person leaves through the left border (frame 40) and comes back there at frame 70, where
+    only a spare (unselected) cluster's track holds it. The spare continues track 1 and is not a
+    track of its own; a spare that does not look alike, or starts inside the view, brings nothing
+    back. A track whose patterns stopped at frame 30, 50 px from the border and walking out at 5 px
+    a frame, left too: it gets boxes to the border, then the spare's."""
+    from trap_core.robust import join_spare_returns
+    frames, boxes = _out_and_back(40, 70)
+    gone, back = frames <= 40, frames >= 70
+    other = _as_track(2, np.arange(100), np.tile([300.0, 300.0, 40.0, 30.0], (100, 1)))
+    tracks = [_as_track(1, frames[gone], boxes[gone]), other]
+    spare = _as_track(0, frames[back], boxes[back])
+    alike = np.ones((3, 3), dtype=bool)
+    out = join_spare_returns(tracks, [spare], 640, 480, alike, 100, 12, 40)
+    assert [t.track_id for t in out] == [1, 2] and out[1].frames.tolist() == list(range(100))
+    assert out[0].frames.tolist() == list(range(48)) + list(range(70, 100))  # and while partly in view
+    unlike = np.eye(3, dtype=bool)
+    assert [len(t) for t in join_spare_returns(tracks, [spare], 640, 480, unlike, 100, 12, 40)] == [41, 100]
+    inside = _as_track(0, frames[back][5:], boxes[back][5:])  # starts 20 px in
+    assert [len(t) for t in join_spare_returns(tracks, [inside], 640, 480, alike, 100, 12, 40)] == [41, 100]
+    short = _as_track(1, frames[:31], boxes[:31])  # ends at x = 50
+    out = join_spare_returns([short, other], [spare], 640, 480, alike, 100, 12, 40)
+    assert len(out) == 2 and out[0].frames.tolist() == list(range(48)) + list(range(70, 100))
+    assert np.all(np.diff(out[0].boxes[30:48, 0] + out[0].boxes[30:48, 2]) < 0)  # on out through the border
+    still = _as_track(1, np.arange(31), np.tile([50.0, 200.0, 40.0, 30.0], (31, 1)))  # stands 50 px in
+    assert [len(t) for t in join_spare_returns([still, other], [spare], 640, 480, alike, 100, 12, 40)] == [31, 100]
+
+
 def test_a_track_that_takes_over_after_a_few_frames_between_the_objects_is_appended() -> None:
     """As above, but track 2's first two frames after track 1's end lie between the two objects
     (50 px off track 1's motion, repeating no box): its next ten follow that motion, so the two

@@ -108,7 +108,8 @@ class TrapParams:
                                 "hierarchy; a selected cluster's pattern that shares its regions mostly with "
                                 "another selected cluster's, while its own is elsewhere too, goes to that cluster")
     rejoin: bool = _p(True, "robust: rejoin fragments of one object across occlusions and exits; with one_track, "
-                            "a track that left the view is continued by the one bringing its object back")
+                            "a track that left the view is continued by the track, or spare cluster, bringing its "
+                            "object back")
     rejoin_similarity: float = _p(0.3, "robust: share of a fragment (counted in occurrences) whose structures the "
                                        "other also has, needed to rejoin them")
     core_share: float = _p(0.8, "robust: track box from regions in at least this share of the occurrences, each "

@@ -14,15 +14,16 @@ from functools import cached_property
 
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, Track, build_track, frame_cores, twin_clusters
+from trap_core.clustering import ClusterSummary, Track, build_track, frame_cores, in_rows, twin_clusters
 from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, StackedGraphs
 from trap_core.robust import (GroupBoxes, colour_overlap, colour_shares, continue_to_border, continue_tracks,
                               drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_stray_pieces,
                               drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes, join_handovers,
-                              join_returns, keep_one_size, lookalike_tracks, mend_shared_stretches, merge_duplicates,
-                              separate_groups, swap_at_crossings, through_groups)
+                              join_returns, join_spare_returns, keep_one_size, lookalike_tracks,
+                              mend_shared_stretches, merge_duplicates, repeats_others, separate_groups,
+                              swap_at_crossings, through_groups)
 
 
 @dataclass
@@ -118,6 +119,8 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
                                       max(1, params.tau // 5)) for t in tracks]
     if robust and params.one_track and params.rejoin and len(tracks) > 1:
         tracks = join_returns(tracks, width, height, _lookalikes(tracks, clusters, tracks_of.graphs))
+    if robust and params.one_track and params.rejoin and tracks:
+        tracks = _returns_of_spares(tracks, clusters, tracks_of, n_frames, view, motion_window)
     if robust and params.groups:  # who is who is settled: placed boxes back on their track's path
         tracks = [through_groups(t, placed, 2 * params.tau) for t in tracks]
     return tracks
@@ -134,8 +137,7 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
     tracks = _gaps_filled([drop_strays(t, max(3, params.tau // 3)) for t in tracks], params)
     alike = _lookalikes(tracks, clusters, tracks_of.graphs)
     tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
-    spare = np.flatnonzero((summary.length >= params.tau) & (True if clusters.moving is None else clusters.moving))
-    spare = spare[~np.isin(spare, clusters.selected)]
+    spare = _spare_clusters(clusters, params.tau)
     tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, tracks_of)
     tracks = drop_shared_stretches(tracks, n_frames, params.tau, motion_window)
     tracks = drop_repeated_pieces(tracks, motion_window, min_frames=params.tau)
@@ -150,6 +152,35 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
     if not params.n_objects:
         tracks = keep_one_size(tracks, params.tau, int(params.min_track_length * n_frames))
     return tracks
+
+
+def _spare_clusters(clusters: Clusters, min_frames: int) -> np.ndarray:
+    """Clusters not selected that move and span at least ``min_frames`` frames: they may hold an
+    object's frames that the selected clusters miss."""
+    summary = clusters.summary
+    spare = np.flatnonzero((summary.length >= min_frames) & (True if clusters.moving is None else clusters.moving))
+    return spare[~np.isin(spare, clusters.selected)]
+
+
+def _returns_of_spares(tracks: list[Track], clusters: Clusters, tracks_of: ClusterTracks, n_frames: int,
+                       view: tuple[int, int], motion_window: int) -> list[Track]:
+    """Tracks whose object left the view continued by the spare cluster that brings it back
+    (:func:`join_spare_returns`, out of view within 2 tau frames). A spare's frames where its
+    box repeats a track's are left out (it holds that track's object there); one left with fewer
+    than tau frames brings nothing back."""
+    params = tracks_of.params
+    spare = _spare_clusters(clusters, params.tau)
+    spare = spare[clusters.summary.paths.start[spare] > min(t.frames[-1] for t in tracks)]
+    spares = []
+    for cluster in spare.tolist():
+        built = tracks_of(cluster)
+        own = ~repeats_others(built, tracks, 0.5, centred=True)
+        if own.sum() >= params.tau:
+            spares.append(in_rows(built, own))
+    if not spares:
+        return tracks
+    alike = _lookalikes(tracks + spares, clusters, tracks_of.graphs)
+    return join_spare_returns(tracks, spares, *view, alike, n_frames, motion_window, 2 * params.tau)
 
 
 def _lookalikes(tracks: list[Track], clusters: Clusters, graphs: Sequence[PlaneGraph]) -> np.ndarray:

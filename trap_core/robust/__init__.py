@@ -12,7 +12,8 @@ from trap_core.robust.camera import (HOP_SHARE, camera_paths, camera_transforms,
 from trap_core.robust.continuation import continue_tracks, join_handovers, mend_shared_stretches
 from trap_core.robust.crossings import lookalike_tracks, swap_at_crossings
 from trap_core.robust.ends import alone_at_ends
-from trap_core.robust.duplicates import drop_repeated_pieces, drop_shared_stretches, extend_from_twins, merge_duplicates
+from trap_core.robust.duplicates import (drop_repeated_pieces, drop_shared_stretches, extend_from_twins,
+                                         merge_duplicates, repeats_others)
 from trap_core.robust.extent import grow_boxes
 from trap_core.robust.gaps import fill_gaps
 from trap_core.robust.groups import separate_groups
@@ -21,7 +22,7 @@ from trap_core.robust.mixed import pattern_sizes, split_mixed
 from trap_core.robust.owners import hand_to_owners
 from trap_core.robust.rejoin import (CUT_SHARE, BorderContacts, border_contacts, border_share, rejoin_fragments,
                                     whole_patterns_apart)
-from trap_core.robust.returns import join_returns
+from trap_core.robust.returns import join_returns, join_spare_returns
 from trap_core.robust.sizes import keep_one_size
 from trap_core.robust.still import drop_still_regions
 from trap_core.robust.strays import drop_stray_pieces, drop_strays
@@ -32,7 +33,8 @@ __all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderCont
            "colour_overlap", "colour_shares", "continue_to_border", "continue_tracks", "drop_repeated_pieces",
            "drop_shared_stretches", "drop_still_regions", "drop_stray_pieces", "drop_strays", "end_at_exits",
            "extend_from_twins", "fill_gaps", "grow_boxes", "hand_to_owners", "held_share", "join_handovers",
-           "join_returns", "keep_one_size", "lookalike_tracks", "mend_shared_stretches", "merge_duplicates",
-           "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments", "scene_patterns",
-           "separate_groups", "shadowed", "split_mixed", "stays_with_scene", "steady_patterns", "swap_at_crossings",
-           "through_groups", "whole_patterns_apart", "without_backdrop", "world_speed", "world_steps"]
+           "join_returns", "join_spare_returns", "keep_one_size", "lookalike_tracks", "mend_shared_stretches",
+           "merge_duplicates", "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments",
+           "repeats_others", "scene_patterns", "separate_groups", "shadowed", "split_mixed", "stays_with_scene",
+           "steady_patterns", "swap_at_crossings", "through_groups", "whole_patterns_apart", "without_backdrop",
+           "world_speed", "world_steps"]

@@ -17,6 +17,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from trap_core.clustering import Track, reaches_border, with_frames
+from trap_core.robust.borders import continue_to_border
 
 
 def join_returns(tracks: Sequence[Track], width: float, height: float, alike: np.ndarray) -> list[Track]:
@@ -31,12 +32,49 @@ def join_returns(tracks: Sequence[Track], width: float, height: float, alike: np
     are renumbered 1.. in order.
     """
     out = list(tracks)
-    alike = np.asarray(alike, dtype=bool)
     leaves = reaches_border(np.array([t.boxes[-1] for t in out]).reshape(-1, 4), width, height)
     enters = reaches_border(np.array([t.boxes[0] for t in out]).reshape(-1, 4), width, height)
-    ends = np.array([t.frames[-1] for t in out])
-    starts = np.array([t.frames[0] for t in out])
-    follows: dict[int, int] = {}  # index of a track that left -> index of the track that brings its object back
+    follows = _returns(out, leaves, enters, alike)
+    for left in sorted(follows, key=lambda k: -out[k].frames[-1]):  # latest first: a returned track can leave again
+        later = out[follows[left]]
+        out[left] = with_frames(out[left], later.frames, later.boxes, later.score, later.points)
+    joined = set(follows.values())
+    return [dataclasses.replace(t, track_id=i) for i, t in enumerate((t for k, t in enumerate(out) if k not in joined),
+                                                                      start=1)]
+
+
+def join_spare_returns(tracks: Sequence[Track], spares: Sequence[Track], width: float, height: float,
+                       alike: np.ndarray, n_frames: int, span: int, max_frames: int) -> list[Track]:
+    """Tracks whose object left the view continued, as by :func:`join_returns`, by the spare
+    tracks (of clusters left out) that bring it back; spares that bring nothing back are left out.
+
+    An object that comes back late in the video is seen for less than ``min_track_length``: its
+    cluster is not selected, and where the view changed its structures (a zoom, a turn) it is not
+    rejoined either. Only a spare that enters the view continues a track, and ``alike`` (over
+    ``tracks`` then ``spares``) must hold. A track whose object's patterns stopped before it
+    reached the border leaves too where its motion takes its whole box there within
+    ``max_frames`` frames (:func:`trap_core.robust.continue_to_border` with that lead, over the
+    last ``span`` frames); a track that is continued gets those boxes to the border as well.
+    """
+    reaching = [continue_to_border(t, n_frames, width, height, span, max_frames, lead=max_frames) for t in tracks]
+    every = reaching + list(spares)
+    some, none = np.ones(len(tracks), dtype=bool), np.zeros(len(spares), dtype=bool)
+    leaves = np.r_[reaches_border(np.array([t.boxes[-1] for t in reaching]).reshape(-1, 4), width, height), none]
+    enters = np.r_[~some, reaches_border(np.array([t.boxes[0] for t in spares]).reshape(-1, 4), width, height)]
+    out = list(tracks)
+    for left, back in _returns(every, leaves, enters, alike).items():
+        spare = every[back]
+        out[left] = with_frames(reaching[left], spare.frames, spare.boxes, spare.score, spare.points)
+    return out
+
+
+def _returns(tracks: Sequence[Track], leaves: np.ndarray, enters: np.ndarray, alike: np.ndarray) -> dict[int, int]:
+    """Index of each track that left the view (``leaves``) -> index of the track that brings its
+    object back (``enters``), as :func:`join_returns` pairs them."""
+    alike = np.asarray(alike, dtype=bool)
+    ends = np.array([t.frames[-1] for t in tracks])
+    starts = np.array([t.frames[0] for t in tracks])
+    follows: dict[int, int] = {}
     for left in sorted(np.flatnonzero(leaves), key=lambda k: ends[k]):
         taken = set(follows.values())
         back = [k for k in np.flatnonzero(enters) if starts[k] > ends[left] and alike[left, k] and k not in taken]
@@ -47,9 +85,4 @@ def join_returns(tracks: Sequence[Track], width: float, height: float, alike: np
                    and ends[k] < starts[first] and alike[k, first]]
         if not out_too:
             follows[left] = first
-    for left in sorted(follows, key=lambda k: -ends[k]):  # latest first: a returned track can leave again
-        later = out[follows[left]]
-        out[left] = with_frames(out[left], later.frames, later.boxes, later.score, later.points)
-    joined = set(follows.values())
-    return [dataclasses.replace(t, track_id=i) for i, t in enumerate((t for k, t in enumerate(out) if k not in joined),
-                                                                      start=1)]
+    return follows

@@ -732,6 +732,29 @@ def test_undersized_boxes_away_from_the_border_get_the_usual_size_around_them() 
     np.testing.assert_allclose(kept, leaving)
 
 
+def test_a_piece_whose_larger_boxes_are_of_one_size_takes_them_as_its_whole_object() -> None:
+    """A 40x40 disc whose body merges with the ground in 60 % of the frames: there its track's box
+    holds only its inner panels (20x10, 15 px right of and 10 px below the body's centre), where its
+    patterns are in every frame. The whole boxes are kept, and the part boxes grow to the whole size
+    on the patterns' position less their offset from the whole box's centre. Larger boxes that are
+    not of one size (the ground around the part, taken in differently each time) are cut down."""
+    from trap_core.clustering import Track
+    from trap_core.robust import separate_groups
+    frames = np.arange(200)
+    disc = np.column_stack([100 + frames, np.full(200, 200.0), np.full(200, 40.0), np.full(200, 40.0)])
+    panels = disc + [20.0, 15.0, -20.0, -30.0]
+    points = panels[:, :2] + panels[:, 2:] / 2
+    seen = panels.copy()
+    whole = (frames >= 60) & (frames < 140)
+    seen[whole] = disc[whole]
+    out = separate_groups([Track(1, frames, seen, np.ones(200), 1, points)], 200, 640, 480, factor=1.5, window=100)
+    np.testing.assert_allclose(out[0].boxes, disc)
+    ragged = seen.copy()
+    ragged[whole, 2:] = disc[whole, 2:] * np.where(frames[whole] % 2, 1.0, 1.6)[:, None]
+    out = separate_groups([Track(1, frames, ragged, np.ones(200), 1, points)], 200, 640, 480, factor=1.5, window=100)
+    np.testing.assert_allclose(out[0].boxes[whole, 2:], panels[whole, 2:])
+
+
 _BASE = TrapParams(segmentation="colour", eps=20.0, tau=25)
 
 

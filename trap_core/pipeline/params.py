@@ -125,7 +125,8 @@ class TrapParams:
     size_jump: float = _p(1.5, "robust: a track box this many times wider or taller than its usual size (running "
                                "median over 4 tau frames each side where it is alone) holds more than the object, "
                                "one this many times narrower or shorter (away from the border) a part of it: it is "
-                               "given the usual size; 0 = off")
+                               "given the usual size, which is the larger boxes' where a quarter of a piece's boxes "
+                               "are that much larger and of one size (the whole object); 0 = off")
     grow: bool = _p(True, "robust: track boxes grow over nearby regions that move with the track, tau/5 frames before "
                           "or after (objects the segmentation splits into parts)")
     fill_gaps: bool = _p(True, "robust: a track's box is interpolated through its gaps of at most tau frames "

@@ -25,7 +25,9 @@ tracks themselves know:
 * **oversized** boxes outside groups (``factor`` times the usual size) get the usual size,
   centred where the neighbouring normal frames put the object, inside the observed box;
   **undersized** ones (``factor`` times smaller: a part of the object) likewise, around the
-  observed box, unless the view may cut the object (within its usual size of the border).
+  observed box, unless the view may cut the object (within its usual size of the border);
+* **whole**: where a piece's oversized boxes are many and of one size, they are the object's
+  whole box and its usual size, and its part boxes grow to it (:func:`_whole_sizes`).
 """
 from __future__ import annotations
 
@@ -39,6 +41,11 @@ from trap_core.clustering import Track, box_centres, box_containment, reaches_bo
 
 GROUPED = 0.5  # share of the smaller box inside the other: the two boxes hold the same regions
 HOLDS_MORE = 1.1  # a box this much wider or taller than its usual size holds more than its object
+# A piece whose boxes are oversized in at least WHOLE_SHARE of its usual-size frames, nearly all
+# (ONE_SIZE_SHARE) within ONE_SIZE of the running median of those boxes, holds its whole object there.
+WHOLE_SHARE = 0.25
+ONE_SIZE = 0.1
+ONE_SIZE_SHARE = 0.75
 
 
 def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height: float, factor: float = 1.5,
@@ -93,6 +100,9 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
     clear = ~np.isnan(boxes[..., 0]) & ~np.any(shared > 0, axis=1)  # its box overlaps no other track's
     preferred = (clear, alone)  # the frames that show most of the object's own size
     usual = _running_median(boxes[..., 2:4], preferred, window, min_gap)
+    whole_centres = np.full(points.shape, np.nan)
+    if factor > 0:
+        usual, whole_centres = _whole_sizes(usual, boxes, points, preferred, factor, window, min_gap)
     offset = _running_median(points - box_centres(boxes), preferred, window, min_gap)
     centres = points - offset
     placed = boxes.copy()
@@ -100,7 +110,7 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
         _split(placed, boxes, usual, centres, partner, shared, slot)
         if factor > 0:
             _shrink_oversized(placed[slot], usual[slot], alone[slot], factor)
-            _grow_undersized(placed[slot], usual[slot], alone[slot], factor, width, height)
+            _grow_undersized(placed[slot], usual[slot], alone[slot], factor, width, height, whole_centres[slot])
     out = []
     for slot, t in enumerate(tracks):
         frames = np.flatnonzero(~np.isnan(placed[slot, :, 0]))
@@ -150,6 +160,49 @@ def _running_median(values: np.ndarray, preferred: Sequence[np.ndarray], window:
             for axis in range(values.shape[2]):
                 out[slot, span, axis] = np.interp(span, frames, medians[:, axis])
     return out
+
+
+def _whole_sizes(usual: np.ndarray, boxes: np.ndarray, points: np.ndarray, preferred: Sequence[np.ndarray],
+                 factor: float, window: int, min_gap: int) -> tuple[np.ndarray, np.ndarray]:
+    """``usual`` (T, F, 2) where a piece's larger boxes are its object's size, and the centres of
+    the object's whole box ((T, F, 2), NaN elsewhere).
+
+    Where the segmentation merges an object's body with the ground around it in some frames, its
+    track holds only its inner parts there, and where the body is a region of its own the box
+    takes it in (:func:`trap_core.robust.grow_boxes`). The running median then follows whichever
+    is more frequent, and the whole boxes, when fewer, read as oversized and are cut down to a
+    part. A piece (as :func:`_running_median` reads it) whose preferred frames have boxes
+    ``factor`` times their usual size in at least ``WHOLE_SHARE`` of them, those of one size
+    (``ONE_SIZE_SHARE`` within ``ONE_SIZE`` of their own running median: a group of two objects,
+    or a box grown over the ground, changes size as they move), takes their size as usual. Its
+    part boxes then grow to it (:func:`_grow_undersized`), centred where its patterns' mean
+    position less their usual offset from the whole box's centre puts the object: a part is off
+    the object's centre, and the neighbouring whole boxes can be far.
+    """
+    out = usual.copy()
+    whole_centres = np.full(points.shape, np.nan)
+    offsets = points - box_centres(boxes)
+    for slot in range(boxes.shape[0]):
+        known = np.flatnonzero(~np.isnan(boxes[slot, :, 0]))
+        for rows in track_pieces(known, min_gap):
+            piece = known[rows]
+            frames = next((piece[mask[slot, piece]] for mask in preferred if mask[slot, piece].any()), piece)
+            sizes = boxes[slot, frames, 2:4]
+            whole = frames[np.any(sizes > factor * usual[slot, frames], axis=1)]
+            if whole.size < max(WHOLE_SHARE * frames.size, 3):
+                continue
+            medians = _window_medians(boxes[slot, whole, 2:4], window)
+            if np.mean(np.all(np.abs(boxes[slot, whole, 2:4] / medians - 1) <= ONE_SIZE, axis=1)) < ONE_SIZE_SHARE:
+                continue
+            span = np.arange(piece[0], piece[-1] + 1)
+            measured = whole[~np.isnan(offsets[slot, whole, 0])]
+            offset = _window_medians(offsets[slot, measured], window) if measured.size else None
+            for axis in (0, 1):
+                out[slot, span, axis] = np.interp(span, whole, medians[:, axis])
+                if offset is not None:
+                    shift = np.interp(span, measured, offset[:, axis])
+                    whole_centres[slot, span, axis] = points[slot, span, axis] - shift
+    return out, whole_centres
 
 
 def _window_medians(samples: np.ndarray, window: int) -> np.ndarray:
@@ -266,22 +319,25 @@ def _shrink_oversized(placed: np.ndarray, usual: np.ndarray, alone: np.ndarray, 
 
 
 def _grow_undersized(placed: np.ndarray, usual: np.ndarray, alone: np.ndarray, factor: float, width: float,
-                     height: float) -> None:
+                     height: float, centres: np.ndarray | None = None) -> None:
     """Outside groups, boxes ``factor`` times smaller than their usual size (a part of the
     object: a thin strip of region along its edge, one of its parts) get that size, centred on
-    the path of the normal frames around them and holding the observed box (in place). Boxes
-    within their usual size of the image border are left alone: the view may cut the object."""
+    the path of the normal frames around them, or on ``centres`` where given (not NaN), and
+    holding the observed box (in place). Boxes within their usual size of the image border are
+    left alone: the view may cut the object."""
     x, y, w, h = placed.T
     cut = ((x < usual[:, 0]) | (y < usual[:, 1]) | (x + w > width - usual[:, 0])
            | (y + h > height - usual[:, 1]))
     present = ~np.isnan(x)
     _to_usual_size(placed, usual, present & alone & ~cut & np.any(placed[:, 2:4] * factor < usual, axis=1),
-                   inside=False)
+                   inside=False, centres=centres)
 
 
-def _to_usual_size(placed: np.ndarray, usual: np.ndarray, odd_frames: np.ndarray, inside: bool) -> None:
-    """Boxes of ``odd_frames`` at their usual size, centred on the path of the other frames and
-    kept inside the observed box (``inside``) or around it (in place)."""
+def _to_usual_size(placed: np.ndarray, usual: np.ndarray, odd_frames: np.ndarray, inside: bool,
+                   centres: np.ndarray | None = None) -> None:
+    """Boxes of ``odd_frames`` at their usual size, centred on the path of the other frames (or
+    on ``centres`` where given and not NaN) and kept inside the observed box (``inside``) or
+    around it (in place)."""
     present = ~np.isnan(placed[:, 0])
     normal = np.flatnonzero(present & ~odd_frames)
     odd = np.flatnonzero(odd_frames)
@@ -290,6 +346,8 @@ def _to_usual_size(placed: np.ndarray, usual: np.ndarray, odd_frames: np.ndarray
     for axis in (0, 1):
         centre = placed[normal, axis] + placed[normal, 2 + axis] / 2
         guess = np.interp(odd, normal, centre)
+        if centres is not None:
+            guess = np.where(np.isnan(centres[odd, axis]), guess, centres[odd, axis])
         size = usual[odd, axis]
         start = placed[odd, axis]
         stop = start + placed[odd, 2 + axis] - size

@@ -332,6 +332,24 @@ def test_rejoin_follows_the_way_an_object_went() -> None:
     assert labels[0] == labels[2] != labels[1]
 
 
+def test_rejoin_brings_back_an_object_that_left_by_what_it_shows_not_where_it_comes_in() -> None:
+    """An object shows three structures until it leaves through the right border (frame 54).
+    Two fragments enter there later and overlap: a single pattern of one of its structures close
+    to where the object's motion went (frame 80), and one showing all three, further off (frame
+    100). Out of view, its motion says little: the one made of the same structures both ways
+    continues it."""
+    line = lambda start, n, x0, dx, y: np.column_stack([x0 + dx * np.arange(n), np.full(n, y)])  # noqa: E731
+    paths = _paths([(0, line(0, 55, 455, 3, 100.0))] * 3 + [(80, line(80, 60, 630, -3, 100.0))]
+                   + [(100, line(100, 40, 630, -3, 300.0))] * 3)
+    labels = np.array([0, 0, 0, 1, 2, 2, 2])
+    pattern = np.array([5, 6, 7, 5, 5, 6, 7])
+    enters, leaves = np.array([False] * 3 + [True] * 4), np.array([True] * 3 + [False] * 4)
+    plain = rejoin_fragments(labels, paths, pattern, 140, max_overlap=0)
+    assert plain[0] == plain[3] != plain[4]  # the better prediction wins without border contacts
+    joined = rejoin_fragments(labels, paths, pattern, 140, max_overlap=0, at_border=_sure(enters, leaves))
+    assert joined[0] == joined[4] != joined[3]
+
+
 def test_rejoin_continues_a_fragment_that_broke_up_short_of_the_border_with_one_that_enters() -> None:
     """Fragment A's pattern broke up before its object reached the right border (it does not
     leave, but may be going to the border); B enters from it. They are joined only where A may

@@ -20,7 +20,13 @@ going out) continues only one that enters it (first box at the border, coming in
 that vanished inside the view (occluded) only one that appears inside it: an object comes back
 the way it went. A fragment whose patterns broke up shortly before its object reached the
 border (or formed shortly after it came in) may have gone either way; pairs that surely came
-back the way they went are joined first. A fragment that was going to the border and is
+back the way they went are joined first. Where one surely left the view and the other surely
+enters it, the object's motion out of view says little of where it comes back: such pairs go
+by how much of both fragments is made of structures the other has (the smaller share, to a
+tenth: a fragment of a few patterns can be all on structures of a larger one), and the
+prediction decides only between equals (two identical cars: one that left was continued by a
+3-pattern fragment of the other car's patterns and the ground, starting at the border 40
+frames later, instead of its own return). A fragment that was going to the border and is
 continued inside the view more than ``lone_gap`` frames later, by one that does not come from
 the border, turned back rather than went out: that continuation must start where the earlier
 fragment's motion puts it (within ``max_apart``). Identical objects share every structure:
@@ -70,14 +76,21 @@ def structure_similarity(labels: np.ndarray, st_pattern: np.ndarray, weights: np
     """How much two clusters (labels 0..C-1) are made of the same structures: for the one that
     has less in the other, the share of its weight (per pattern ``weights``: its occurrences, say)
     on plane patterns the other also has. (C, C), symmetric, 1 on the diagonal."""
+    share = _structure_shares(labels, st_pattern, weights)
+    return np.maximum(share, share.T)
+
+
+def _structure_shares(labels: np.ndarray, st_pattern: np.ndarray, weights: np.ndarray | float = 1.0
+                      ) -> np.ndarray:
+    """(C, C): row ``a``, column ``b``: the share of cluster ``a``'s weight on plane patterns that
+    cluster ``b`` also has (:func:`structure_similarity` is the larger of the two ways)."""
     shape = (int(labels.max()) + 1 if labels.size else 0, int(st_pattern.max()) + 1 if st_pattern.size else 0)
     per_pattern = np.broadcast_to(np.asarray(weights, dtype=float), labels.shape)
     weighted = sparse.csr_matrix((per_pattern, (labels, st_pattern)), shape=shape)  # repeated cells add up
     present = weighted.copy()
     present.data = (present.data > 0).astype(float)
     totals = np.asarray(weighted.sum(axis=1)).ravel()
-    share = (weighted @ present.T).toarray() / np.maximum(totals, 1e-12)[:, None]
-    return np.maximum(share, share.T)
+    return (weighted @ present.T).toarray() / np.maximum(totals, 1e-12)[:, None]
 
 
 def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.ndarray, n_frames: int,
@@ -116,7 +129,8 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     n_clusters = summary.length.size
     if n_clusters < 2:
         return labels
-    similarity = structure_similarity(labels, st_pattern, 1.0 if weights is None else weights)
+    share = _structure_shares(labels, st_pattern, 1.0 if weights is None else weights)
+    similarity, both_ways = np.maximum(share, share.T), np.minimum(share, share.T)
     covered = summary.covered.astype(np.float32)
     overlap = covered @ covered.T
     start = summary.paths.start
@@ -139,10 +153,13 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
         keep &= ~turned | (costs <= max_apart)
     earlier, later, costs = earlier[keep], later[keep], costs[keep]
     unsure = np.zeros(costs.size, dtype=bool) if at_border is None else leaves[earlier] != enters[later]
+    # out of the view an object's motion says little: what both fragments show goes first (to a tenth)
+    shown = (np.zeros(costs.size) if at_border is None
+             else np.where(leaves[earlier] & enters[later], -np.round(both_ways[earlier, later], 1), 0.0))
     group = np.arange(n_clusters)
     group_covered = summary.covered.copy()
     along = _going_along(summary, overlap, ALONG_FRAMES * max_overlap, max_apart / 4)
-    for pair in np.lexsort((costs, unsure)):
+    for pair in np.lexsort((costs, shown, unsure)):
         a, b = group[earlier[pair]], group[later[pair]]
         both = np.flatnonzero(group_covered[a] & group_covered[b])
         if a == b or both.size > max_overlap:

@@ -2091,19 +2091,20 @@ def test_a_spare_cluster_that_brings_back_an_object_that_left_continues_its_trac
     tracks = [_as_track(1, frames[gone], boxes[gone]), other]
     spare = _as_track(0, frames[back], boxes[back])
     alike = np.ones((3, 3), dtype=bool)
-    out = join_spare_returns(tracks, [spare], 640, 480, alike, 100, 12, 40)
+    view = (640, 480, 100, 12, 40)  # frame size, video length, frames of motion, frames to the border
+    out = join_spare_returns(tracks, lambda *_: [spare], lambda _: alike, *view)
     assert [t.track_id for t in out] == [1, 2] and out[1].frames.tolist() == list(range(100))
     assert out[0].frames.tolist() == list(range(48)) + list(range(70, 100))  # and while partly in view
     unlike = np.eye(3, dtype=bool)
-    assert [len(t) for t in join_spare_returns(tracks, [spare], 640, 480, unlike, 100, 12, 40)] == [41, 100]
+    assert [len(t) for t in join_spare_returns(tracks, lambda *_: [spare], lambda _: unlike, *view)] == [41, 100]
     inside = _as_track(0, frames[back][5:], boxes[back][5:])  # starts 20 px in
-    assert [len(t) for t in join_spare_returns(tracks, [inside], 640, 480, alike, 100, 12, 40)] == [41, 100]
+    assert [len(t) for t in join_spare_returns(tracks, lambda *_: [inside], lambda _: alike, *view)] == [41, 100]
     short = _as_track(1, frames[:31], boxes[:31])  # ends at x = 50
-    out = join_spare_returns([short, other], [spare], 640, 480, alike, 100, 12, 40)
+    out = join_spare_returns([short, other], lambda *_: [spare], lambda _: alike, *view)
     assert len(out) == 2 and out[0].frames.tolist() == list(range(48)) + list(range(70, 100))
     assert np.all(np.diff(out[0].boxes[30:48, 0] + out[0].boxes[30:48, 2]) < 0)  # on out through the border
     still = _as_track(1, np.arange(31), np.tile([50.0, 200.0, 40.0, 30.0], (31, 1)))  # stands 50 px in
-    assert [len(t) for t in join_spare_returns([still, other], [spare], 640, 480, alike, 100, 12, 40)] == [31, 100]
+    assert [len(t) for t in join_spare_returns([still, other], lambda *_: [spare], lambda _: alike, *view)] == [31, 100]
 
 
 def test_a_track_that_takes_over_after_a_few_frames_between_the_objects_is_appended() -> None:

@@ -169,18 +169,27 @@ def _returns_of_spares(tracks: list[Track], clusters: Clusters, tracks_of: Clust
     box repeats a track's are left out (it holds that track's object there); one left with fewer
     than tau frames brings nothing back."""
     params = tracks_of.params
-    spare = _spare_clusters(clusters, params.tau)
-    spare = spare[clusters.summary.paths.start[spare] > min(t.frames[-1] for t in tracks)]
-    spares = []
-    for cluster in spare.tolist():
-        built = tracks_of(cluster)
-        own = ~repeats_others(built, tracks, 0.5, centred=True)
-        if own.sum() >= params.tau:
-            spares.append(in_rows(built, own))
-    if not spares:
-        return tracks
-    alike = _lookalikes(tracks + spares, clusters, tracks_of.graphs)
-    return join_spare_returns(tracks, spares, *view, alike, n_frames, motion_window, 2 * params.tau)
+
+    width, height = view
+
+    def spares_after(frame: int, size: np.ndarray) -> list[Track]:
+        spare = _spare_clusters(clusters, params.tau)
+        paths = clusters.summary.paths
+        spare = spare[paths.start[spare] > frame]
+        # where each is first: a box that reaches the border is centred within 3/4 of its size of it, and
+        # the patterns' mean can be off the centre by half of it (a part); twice the size leaves room for a zoom
+        x, y = paths.points[paths.offsets[spare]].T
+        near = (np.minimum(x, width - x) <= 2 * size[0]) | (np.minimum(y, height - y) <= 2 * size[1])
+        out = []
+        for cluster in spare[near].tolist():
+            built = tracks_of(cluster)
+            own = ~repeats_others(built, tracks, 0.5, centred=True)
+            if own.sum() >= params.tau:
+                out.append(in_rows(built, own))
+        return out
+
+    return join_spare_returns(tracks, spares_after, lambda every: _lookalikes(every, clusters, tracks_of.graphs),
+                              *view, n_frames, motion_window, 2 * params.tau)
 
 
 def _lookalikes(tracks: list[Track], clusters: Clusters, graphs: Sequence[PlaneGraph]) -> np.ndarray:

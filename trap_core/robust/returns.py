@@ -12,7 +12,7 @@ later (an identical person that left twice, in quality.py "blind": 4 tracks for 
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
@@ -43,28 +43,40 @@ def join_returns(tracks: Sequence[Track], width: float, height: float, alike: np
                                                                       start=1)]
 
 
-def join_spare_returns(tracks: Sequence[Track], spares: Sequence[Track], width: float, height: float,
-                       alike: np.ndarray, n_frames: int, span: int, max_frames: int) -> list[Track]:
+def join_spare_returns(tracks: Sequence[Track], spares_after: Callable[[int, np.ndarray], Sequence[Track]],
+                       alike: Callable[[Sequence[Track]], np.ndarray], width: float, height: float,
+                       n_frames: int, span: int, max_frames: int) -> list[Track]:
     """Tracks whose object left the view continued, as by :func:`join_returns`, by the spare
     tracks (of clusters left out) that bring it back; spares that bring nothing back are left out.
 
     An object that comes back late in the video is seen for less than ``min_track_length``: its
     cluster is not selected, and where the view changed its structures (a zoom, a turn) it is not
-    rejoined either. Only a spare that enters the view continues a track, and ``alike`` (over
-    ``tracks`` then ``spares``) must hold. A track whose object's patterns stopped before it
-    reached the border leaves too where its motion takes its whole box there within
-    ``max_frames`` frames (:func:`trap_core.robust.continue_to_border` with that lead, over the
-    last ``span`` frames); a track that is continued gets those boxes to the border as well.
+    rejoined either. A track whose object's patterns stopped before it reached the border leaves
+    too where its motion takes its whole box there within ``max_frames`` frames
+    (:func:`trap_core.robust.continue_to_border` with that lead, over the last ``span`` frames);
+    a track that is continued gets those boxes to the border as well. ``spares_after(frame,
+    size)`` gives the spares that start after ``frame`` (the first track's exit) within ``size``
+    (width, height: the largest usual size of the tracks that left) of the border (building them
+    costs), and ``alike(tracks + spares)`` whether two of them may be look-alikes; only a spare
+    that enters the view continues a track.
     """
     reaching = [continue_to_border(t, n_frames, width, height, span, max_frames, lead=max_frames) for t in tracks]
-    every = reaching + list(spares)
-    some, none = np.ones(len(tracks), dtype=bool), np.zeros(len(spares), dtype=bool)
-    leaves = np.r_[reaches_border(np.array([t.boxes[-1] for t in reaching]).reshape(-1, 4), width, height), none]
-    enters = np.r_[~some, reaches_border(np.array([t.boxes[0] for t in spares]).reshape(-1, 4), width, height)]
+    left = reaches_border(np.array([t.boxes[-1] for t in reaching]).reshape(-1, 4), width, height)
+    if not left.any():
+        return list(tracks)
+    gone = [t for t, out in zip(reaching, left) if out]
+    size = np.max([np.median(t.boxes[:, 2:], axis=0) for t in gone], axis=0)
+    spares = list(spares_after(min(int(t.frames[-1]) for t in gone), size))
+    if not spares:
+        return list(tracks)
+    every = reaching + spares
+    leaves = np.r_[left, np.zeros(len(spares), dtype=bool)]
+    enters = np.r_[np.zeros(len(tracks), dtype=bool),
+                   reaches_border(np.array([t.boxes[0] for t in spares]).reshape(-1, 4), width, height)]
     out = list(tracks)
-    for left, back in _returns(every, leaves, enters, alike).items():
+    for gone, back in _returns(every, leaves, enters, alike(list(tracks) + spares)).items():
         spare = every[back]
-        out[left] = with_frames(reaching[left], spare.frames, spare.boxes, spare.score, spare.points)
+        out[gone] = with_frames(reaching[gone], spare.frames, spare.boxes, spare.score, spare.points)
     return out
 
 

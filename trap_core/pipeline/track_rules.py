@@ -169,7 +169,6 @@ def _returns_of_spares(tracks: list[Track], clusters: Clusters, tracks_of: Clust
     box repeats a track's are left out (it holds that track's object there); one left with fewer
     than tau frames brings nothing back."""
     params = tracks_of.params
-
     width, height = view
 
     def spares_after(frame: int, size: np.ndarray) -> list[Track]:

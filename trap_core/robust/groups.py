@@ -32,7 +32,7 @@ tracks themselves know:
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
@@ -100,10 +100,11 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
     clear = ~np.isnan(boxes[..., 0]) & ~np.any(shared > 0, axis=1)  # its box overlaps no other track's
     preferred = (clear, alone)  # the frames that show most of the object's own size
     usual = _running_median(boxes[..., 2:4], preferred, window, min_gap)
+    offsets = points - box_centres(boxes)
     whole_centres = np.full(points.shape, np.nan)
     if factor > 0:
-        usual, whole_centres = _whole_sizes(usual, boxes, points, preferred, factor, window, min_gap)
-    offset = _running_median(points - box_centres(boxes), preferred, window, min_gap)
+        usual, whole_centres = _whole_sizes(usual, boxes, points, offsets, preferred, factor, window, min_gap)
+    offset = _running_median(offsets, preferred, window, min_gap)
     centres = points - offset
     placed = boxes.copy()
     for slot in range(len(tracks)):
@@ -149,12 +150,7 @@ def _running_median(values: np.ndarray, preferred: Sequence[np.ndarray], window:
     interpolated between them; NaN outside the pieces."""
     out = np.full(values.shape, np.nan)
     for slot in range(values.shape[0]):
-        known = np.flatnonzero(~np.isnan(values[slot]).any(axis=1))
-        for rows in track_pieces(known, min_gap):
-            piece = known[rows]
-            if piece.size == 0:
-                continue
-            frames = next((piece[mask[slot, piece]] for mask in preferred if mask[slot, piece].any()), piece)
+        for piece, frames in _preferred_pieces(~np.isnan(values[slot]).any(axis=1), preferred, slot, min_gap):
             medians = _window_medians(values[slot, frames], window)
             span = np.arange(piece[0], piece[-1] + 1)
             for axis in range(values.shape[2]):
@@ -162,10 +158,24 @@ def _running_median(values: np.ndarray, preferred: Sequence[np.ndarray], window:
     return out
 
 
-def _whole_sizes(usual: np.ndarray, boxes: np.ndarray, points: np.ndarray, preferred: Sequence[np.ndarray],
-                 factor: float, window: int, min_gap: int) -> tuple[np.ndarray, np.ndarray]:
+def _preferred_pieces(known: np.ndarray, preferred: Sequence[np.ndarray], slot: int, min_gap: int
+                      ) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    """Per piece of track ``slot`` (a run of its ``known`` frames, a (F,) mask, without a gap of
+    more than ``min_gap``): its frames, and those the first of the (T, F) masks ``preferred``
+    that holds any of them marks (all of them if none does)."""
+    present = np.flatnonzero(known)
+    for rows in track_pieces(present, min_gap):
+        piece = present[rows]
+        if piece.size:
+            yield piece, next((piece[mask[slot, piece]] for mask in preferred if mask[slot, piece].any()), piece)
+
+
+def _whole_sizes(usual: np.ndarray, boxes: np.ndarray, points: np.ndarray, offsets: np.ndarray,
+                 preferred: Sequence[np.ndarray], factor: float, window: int, min_gap: int
+                 ) -> tuple[np.ndarray, np.ndarray]:
     """``usual`` (T, F, 2) where a piece's larger boxes are its object's size, and the centres of
-    the object's whole box ((T, F, 2), NaN elsewhere).
+    the object's whole box ((T, F, 2), NaN elsewhere); ``offsets``: the patterns' mean
+    ``points`` less their box's centre, per frame.
 
     Where the segmentation merges an object's body with the ground around it in some frames, its
     track holds only its inner parts there, and where the body is a region of its own the box
@@ -181,12 +191,8 @@ def _whole_sizes(usual: np.ndarray, boxes: np.ndarray, points: np.ndarray, prefe
     """
     out = usual.copy()
     whole_centres = np.full(points.shape, np.nan)
-    offsets = points - box_centres(boxes)
     for slot in range(boxes.shape[0]):
-        known = np.flatnonzero(~np.isnan(boxes[slot, :, 0]))
-        for rows in track_pieces(known, min_gap):
-            piece = known[rows]
-            frames = next((piece[mask[slot, piece]] for mask in preferred if mask[slot, piece].any()), piece)
+        for piece, frames in _preferred_pieces(~np.isnan(boxes[slot, :, 0]), preferred, slot, min_gap):
             sizes = boxes[slot, frames, 2:4]
             whole = frames[np.any(sizes > factor * usual[slot, frames], axis=1)]
             if whole.size < max(WHOLE_SHARE * frames.size, 3):

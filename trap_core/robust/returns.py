@@ -32,8 +32,7 @@ def join_returns(tracks: Sequence[Track], width: float, height: float, alike: np
     are renumbered 1.. in order.
     """
     out = list(tracks)
-    leaves = reaches_border(np.array([t.boxes[-1] for t in out]).reshape(-1, 4), width, height)
-    enters = reaches_border(np.array([t.boxes[0] for t in out]).reshape(-1, 4), width, height)
+    leaves, enters = _at_border(out, -1, width, height), _at_border(out, 0, width, height)
     follows = _returns(out, leaves, enters, alike)
     for left in sorted(follows, key=lambda k: -out[k].frames[-1]):  # latest first: a returned track can leave again
         later = out[follows[left]]
@@ -61,7 +60,7 @@ def join_spare_returns(tracks: Sequence[Track], spares_after: Callable[[int, np.
     that enters the view continues a track.
     """
     reaching = [continue_to_border(t, n_frames, width, height, span, max_frames, lead=max_frames) for t in tracks]
-    left = reaches_border(np.array([t.boxes[-1] for t in reaching]).reshape(-1, 4), width, height)
+    left = _at_border(reaching, -1, width, height)
     if not left.any():
         return list(tracks)
     gone = [t for t, out in zip(reaching, left) if out]
@@ -71,13 +70,18 @@ def join_spare_returns(tracks: Sequence[Track], spares_after: Callable[[int, np.
         return list(tracks)
     every = reaching + spares
     leaves = np.r_[left, np.zeros(len(spares), dtype=bool)]
-    enters = np.r_[np.zeros(len(tracks), dtype=bool),
-                   reaches_border(np.array([t.boxes[0] for t in spares]).reshape(-1, 4), width, height)]
+    enters = np.r_[np.zeros(len(tracks), dtype=bool), _at_border(spares, 0, width, height)]
     out = list(tracks)
-    for gone, back in _returns(every, leaves, enters, alike(list(tracks) + spares)).items():
+    for slot, back in _returns(every, leaves, enters, alike(list(tracks) + spares)).items():
         spare = every[back]
-        out[gone] = with_frames(reaching[gone], spare.frames, spare.boxes, spare.score, spare.points)
+        out[slot] = with_frames(reaching[slot], spare.frames, spare.boxes, spare.score, spare.points)
     return out
+
+
+def _at_border(tracks: Sequence[Track], row: int, width: float, height: float) -> np.ndarray:
+    """Per track: whether its box in ``row`` (0: its first, -1: its last) reaches the border
+    (:func:`reaches_border`): the object enters (leaves) the view there."""
+    return reaches_border(np.array([t.boxes[row] for t in tracks]).reshape(-1, 4), width, height)
 
 
 def _returns(tracks: Sequence[Track], leaves: np.ndarray, enters: np.ndarray, alike: np.ndarray) -> dict[int, int]:

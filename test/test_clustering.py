@@ -150,6 +150,35 @@ def test_unsupervised_selection_asks_a_cluster_to_be_seen_not_only_to_span() -> 
     assert select_clusters(summary, 100, n_objects=2, seen=seen) == [0, 1]
 
 
+def _seen_every(step: int, place: np.ndarray) -> MiningResult:
+    """Pattern 0 seen in all of 100 frames at (0, 0); pattern 1 every ``step`` frames at ``place``
+    (one position per frame, (100, 2))."""
+    rare = np.arange(0, 100, step)
+    frames = np.r_[np.arange(100), rare]
+    n = frames.size
+    return MiningResult(np.array([1, 2]), np.array([100, rare.size]), np.array([1, 1]), frames,
+                        np.r_[np.zeros(100, int), np.ones(rare.size, int)], np.r_[np.zeros((100, 2)), place[rare]],
+                        np.zeros((n, 4)), np.zeros((n, 4)), np.zeros((n, 1), np.int64), np.array([0, 1]),
+                        np.array([0, 100, n]), np.arange(n))
+
+
+def test_a_cluster_seen_in_half_the_frames_asked_is_a_track_only_apart_from_the_others() -> None:
+    """With own frames, cluster 1 (seen in 15 frames, 0.15 of the video, under ``min_length``
+    0.25 but over half of it) is taken after cluster 0 while it keeps its distance; once it
+    passes cluster 0 in a fifth of its frames it is not, and seen in 9 frames it never is."""
+    apart = np.full((100, 2), 300.0)
+    passing = apart.copy()
+    passing[40:60] = 5.0
+    for place, step, expected in ((apart, 7, [0, 1]), (passing, 7, [0]), (apart, 12, [0])):
+        result = _seen_every(step, place)
+        seen = seen_frames(result, np.array([0, 1]), np.array([0, 1]))
+        summary = summarise(np.array([0, 1]), trajectories(observed_paths(result), np.arange(2)),
+                            np.bincount(result.occ_pattern), 100)
+        assert summary.length[1] >= 25
+        assert select_clusters(summary, 100, separation=40.0, own_frames=True, seen=seen) == expected
+        assert select_clusters(summary, 100, separation=40.0, seen=seen) == [0]  # without own frames: as asked
+
+
 def test_occurrences_cut_by_the_view_do_not_count_as_seen() -> None:
     """Pattern 0 (cluster 0): 60 occurrences inside a 640x480 view, then 40 with the frame's box
     (the backdrop); pattern 1 (cluster 1): 20 at the left edge. With the view, cluster 0 is seen

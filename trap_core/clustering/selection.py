@@ -10,6 +10,8 @@ from trap_core.clustering.tracks import region_boxes_reach_border
 from trap_core.clustering.trajectory import Trajectories
 from trap_core.mining import MiningResult
 
+APART_SHARE = 0.9  # of its frames, a cluster seen in fewer than min_length of the video is apart from tracks
+
 
 @dataclass(frozen=True)
 class ClusterSummary:
@@ -90,11 +92,23 @@ def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | Non
     where no kept cluster is near: a chain that follows a kept object for a third of its frames
     no longer beats a shorter cluster that is all its own. Given ``seen`` (ours: per cluster,
     the frames where it has occurrences, :func:`seen_frames`), the unsupervised count also asks
-    that a cluster be seen in ``min_length`` of the video, not only span it.
+    that a cluster be seen in ``min_length`` of the video, not only span it. With both, a
+    cluster seen in at least half that is taken after the others, when it is apart from every
+    track in ``APART_SHARE`` of its frames: an object whose regions keep changing shape (a
+    glyph that merges with its body in every other frame) gives frequent patterns in a third of
+    its frames; clusters seen as rarely beside a track are mostly its fragments, or a second
+    cluster on its object.
     """
     remaining = np.arange(summary.length.size)
     if eligible is not None:
         remaining = remaining[eligible]
+    if n_objects is None and own_frames and seen is not None:
+        long_enough = remaining[summary.length[remaining] >= min_length * n_frames]
+        often = seen[long_enough] >= min_length * n_frames
+        rarely = ~often & (seen[long_enough] >= min_length * n_frames / 2)
+        chosen = _most_own_frames(summary, long_enough[often], n_frames, tolerance, separation, max_objects)
+        return chosen + _most_own_frames(summary, long_enough[rarely], n_frames, tolerance, separation,
+                                         max_objects - len(chosen), chosen, APART_SHARE)
     if n_objects is None and seen is not None:
         remaining = remaining[seen[remaining] >= min_length * n_frames]
     if n_objects is None and own_frames:
@@ -115,14 +129,17 @@ def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | Non
 
 
 def _most_own_frames(summary: ClusterSummary, candidates: np.ndarray, n_frames: int, tolerance: float,
-                     separation: float, max_objects: int) -> list[int]:
-    """Unsupervised selection among long enough ``candidates`` by own frames (no kept cluster
-    near), each kept only while at least half its frames are its own."""
+                     separation: float, max_objects: int, kept: list[int] | None = None,
+                     own_share: float = 0.5) -> list[int]:
+    """Unsupervised selection among long enough ``candidates`` by own frames (no cluster of
+    ``kept`` or chosen here near), each chosen only while at least ``own_share`` of its frames
+    are its own."""
     chosen: list[int] = []
-    near = np.zeros((candidates.size, n_frames), dtype=bool)
+    near = (_near_kept(summary, candidates, kept, separation) if kept and candidates.size
+            else np.zeros((candidates.size, n_frames), dtype=bool))
     while candidates.size and len(chosen) < max_objects:
         own = (summary.covered[candidates] & ~near).sum(axis=1)
-        free = own >= summary.length[candidates] / 2
+        free = own >= own_share * summary.length[candidates]
         if not free.any():
             break
         chosen.append(_longest(summary, candidates[free], own[free], tolerance * n_frames))

@@ -2022,6 +2022,30 @@ def test_a_track_that_takes_over_where_another_ended_is_appended_to_it() -> None
     assert len(join_handovers(tracks, 100, 12, 40.0)) == 4
 
 
+def test_a_track_that_comes_back_on_the_motion_after_a_gap_is_appended_within_max_gap() -> None:
+    """Track 1 holds frames 0-59 of an object moving right; nothing holds it in frames 60-89
+    (its regions merged with the ground), and track 2 holds it from frame 90, where track 1's
+    motion puts it. With ``max_gap`` 50 the two are one; with the default (``window``, 12) or
+    ``max_gap`` 20 they are not, nor with track 2 60 px off that motion, nor with a track that
+    starts at frame 90 where track 1 ended (the last box's place is asked only within
+    ``window``)."""
+    from trap_core.robust import join_handovers
+    t = np.arange(150, dtype=float)
+    boxes = np.column_stack([100 + 2 * t, np.full(150, 200.0), np.full(150, 40.0), np.full(150, 30.0)])
+    frames = np.arange(150)
+    first = _as_track(1, frames[:60], boxes[:60])
+    back = _as_track(2, frames[90:], boxes[90:])
+    out = join_handovers([first, back], 150, 12, 40.0, max_gap=50)
+    assert [len(t) for t in out] == [120]
+    np.testing.assert_allclose(out[0].boxes[60:], boxes[90:])
+    assert len(join_handovers([first, back], 150, 12, 40.0)) == 2
+    assert len(join_handovers([first, back], 150, 12, 40.0, max_gap=20)) == 2
+    off = _as_track(2, frames[90:], boxes[90:] + [0.0, 60.0, 0.0, 0.0])
+    assert len(join_handovers([first, off], 150, 12, 40.0, max_gap=50)) == 2
+    stays = _as_track(2, frames[90:], np.tile(boxes[59], (60, 1)))
+    assert len(join_handovers([first, stays], 150, 12, 40.0, max_gap=50)) == 2
+
+
 def _out_and_back(leave: int, back: int, n: int = 100, y: float = 200.0) -> tuple[np.ndarray, np.ndarray]:
     """Frames and boxes of an object that walks left out of a 640x480 view (its last box at the
     border at frame ``leave``) and walks back in from frame ``back`` (its first box at the border)."""

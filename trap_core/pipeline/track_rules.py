@@ -145,7 +145,7 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
     tracks = [end_at_exits(t, width, height, motion_window) for t in tracks]
     tracks = continue_tracks(tracks, summary, spare, n_frames, width, height, motion_window, params.eps, tracks_of)
     tracks = [end_at_exits(t, width, height, motion_window) for t in tracks]  # and the continuations'
-    tracks = _gaps_filled(join_handovers(tracks, n_frames, motion_window, params.eps), params)
+    tracks = _gaps_filled(join_handovers(tracks, n_frames, motion_window, params.eps, max_gap=2 * params.tau), params)
     if params.size_jump:  # the continuations' boxes were not sized against their tracks yet
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=False, min_gap=params.tau)

@@ -157,30 +157,33 @@ def _handed_over(others: Sequence[Track], start: int, velocity: np.ndarray, orig
                for t in others)
 
 
-def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: float, min_iou: float = 0.5
-                   ) -> list[Track]:
+def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: float, min_iou: float = 0.5,
+                   max_gap: int = 0) -> list[Track]:
     """Tracks where a track that ends more than ``window`` frames before the video is followed by
     another that takes its object over: the later one is appended to the earlier and dropped.
 
-    The later track must start at most ``window`` frames after the earlier one ends, and where it
+    The later track must start at most ``window`` frames after the earlier one ends (``max_gap``
+    where more: an object whose regions merged with the ground for a while, or that passed behind
+    another, comes back where its motion puts it; only that motion is then asked), and where it
     starts more than ``window`` frames before that end, hold an object tracked already there (its
     box overlaps another track's, :data:`ANY_OVERLAP`) until then: it began on another object and
     stayed with it while the two were in one place, or on the earlier track's own object (a second
     cluster on it that goes on where the first ends). Of its frames after that end, those where it
     repeats a third track's box (IoU at least ``min_iou``: it is still on the other object) do
-    not count; it must keep at least ``window`` of them, the first at most ``window`` frames
-    after the end, and over the first ``window`` of them be at most ``reach`` px (median) from
-    where the earlier track's motion (a straight line through its last ``window`` box centres)
-    puts it: where look-alikes part, its first boxes may still lie between the two. The closest
-    such track is taken; its counted frames are appended.
+    not count; it must keep at least ``window`` of them, the first at most ``window`` (or
+    ``max_gap``) frames after the end, and over the first ``window`` of them be at most
+    ``reach`` px (median) from where the earlier track's motion (a straight line through its
+    last ``window`` box centres) puts it: where look-alikes part, its first boxes may still lie
+    between the two. The closest such track is taken; its counted frames are appended.
 
     Where no track is that close to the motion, the one track whose first counted box is at most
-    ``reach`` px from the earlier track's last box takes over: where the object turned as it met
-    a look-alike, the earlier track's last boxes wander between the two and their line points
-    nowhere. The earlier track then ends where its wandering began: of its last ``window`` frames
-    before the later one starts, those after the last box within ``reach`` of the later track's
-    line (through its first ``window`` centres, extended back) go. The later track's boxes (but
-    those on a third track's object) are appended from its start. Ids are renumbered 1.. in order.
+    ``reach`` px from the earlier track's last box, within ``window`` frames of it, takes over:
+    where the object turned as it met a look-alike, the earlier track's last boxes wander between
+    the two and their line points nowhere. The earlier track then ends where its wandering
+    began: of its last ``window`` frames before the later one starts, those after the last box
+    within ``reach`` of the later track's line (through its first ``window`` centres, extended
+    back) go. The later track's boxes (but those on a third track's object) are appended from its
+    start. Ids are renumbered 1.. in order.
     """
     out = list(tracks)
     slot = 0
@@ -195,7 +198,7 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
         best, best_error, best_rows = None, reach, None
         nearby = []  # (track, its rows from its start) whose first counted box is near the last box
         for other, later in enumerate(out):
-            if other == slot or int(later.frames[0]) > end + window:
+            if other == slot or int(later.frames[0]) > end + max(window, max_gap):
                 continue
             thirds = [t for k, t in enumerate(out) if k not in (slot, other)]
             on_known = repeats_others(later, [t for k, t in enumerate(out) if k != other], ANY_OVERLAP)
@@ -204,7 +207,7 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
             own = ~repeats_others(later, thirds, min_iou)
             rows = (later.frames > end) & own
             after = np.flatnonzero(rows)
-            if after.size < window or later.frames[after[0]] > end + window:
+            if after.size < window or later.frames[after[0]] > end + max(window, max_gap):
                 continue
             first = after[:window]
             centres = box_centres(later.boxes[first])
@@ -212,7 +215,8 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
             error = float(np.median(np.linalg.norm(centres - predicted, axis=1)))
             if error <= best_error:
                 best, best_error, best_rows = other, error, rows
-            elif np.linalg.norm(centres[0] - box_centres(current.boxes[-1:])[0]) <= reach:
+            elif (later.frames[after[0]] <= end + window
+                  and np.linalg.norm(centres[0] - box_centres(current.boxes[-1:])[0]) <= reach):
                 nearby.append((other, own))
         if best is None and len(nearby) == 1:
             best, best_rows = nearby[0]

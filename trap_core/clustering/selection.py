@@ -10,7 +10,7 @@ from trap_core.clustering.tracks import region_boxes_reach_border
 from trap_core.clustering.trajectory import Trajectories
 from trap_core.mining import MiningResult
 
-APART_SHARE = 0.9  # of its frames, a cluster seen in fewer than min_length of the video is apart from tracks
+APART_SHARE = 0.9  # share of its frames a cluster seen in under min_length of the video must lie apart from tracks
 
 
 @dataclass(frozen=True)

@@ -102,8 +102,10 @@ def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | Non
     remaining = np.arange(summary.length.size)
     if eligible is not None:
         remaining = remaining[eligible]
-    if n_objects is None and own_frames and seen is not None:
+    if n_objects is None and own_frames:
         long_enough = remaining[summary.length[remaining] >= min_length * n_frames]
+        if seen is None:
+            return _most_own_frames(summary, long_enough, n_frames, tolerance, separation, max_objects)
         often = seen[long_enough] >= min_length * n_frames
         rarely = ~often & (seen[long_enough] >= min_length * n_frames / 2)
         chosen = _most_own_frames(summary, long_enough[often], n_frames, tolerance, separation, max_objects)
@@ -111,9 +113,6 @@ def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | Non
                                          max_objects - len(chosen), chosen, APART_SHARE)
     if n_objects is None and seen is not None:
         remaining = remaining[seen[remaining] >= min_length * n_frames]
-    if n_objects is None and own_frames:
-        return _most_own_frames(summary, remaining[summary.length[remaining] >= min_length * n_frames], n_frames,
-                                tolerance, separation, max_objects)
     chosen: list[int] = []
     limit = n_objects if n_objects is not None else max_objects
     while remaining.size and len(chosen) < limit:

@@ -197,8 +197,9 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
         velocity, origin = line
         best, best_error, best_rows = None, reach, None
         nearby = []  # (track, its rows from its start) whose first counted box is near the last box
+        latest = end + max(window, max_gap)  # where a later track's first counted frame may be at most
         for other, later in enumerate(out):
-            if other == slot or int(later.frames[0]) > end + max(window, max_gap):
+            if other == slot or int(later.frames[0]) > latest:
                 continue
             thirds = [t for k, t in enumerate(out) if k not in (slot, other)]
             on_known = repeats_others(later, [t for k, t in enumerate(out) if k != other], ANY_OVERLAP)
@@ -207,7 +208,7 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
             own = ~repeats_others(later, thirds, min_iou)
             rows = (later.frames > end) & own
             after = np.flatnonzero(rows)
-            if after.size < window or later.frames[after[0]] > end + max(window, max_gap):
+            if after.size < window or later.frames[after[0]] > latest:
                 continue
             first = after[:window]
             centres = box_centres(later.boxes[first])

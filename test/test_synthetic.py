@@ -217,3 +217,28 @@ def test_a_road_background_is_asphalt_with_lane_markings_and_verges() -> None:
     photo = build_world(SceneConfig(width=160, height=120, frames=6, seed=4, background="chelsea"))
     assert np.array_equal(world.camera, photo.camera) and np.array_equal(world.paths, photo.paths)
     assert build_parser().parse_args(["bag", "--background", "road"]).background == "road"
+
+
+def test_passing_objects_enter_once_and_leave_for_good() -> None:
+    """With ``passing`` each object is in view for one stretch of the video, entering and leaving
+    across the border, so a long video holds short tracks (benchmarks/passing_objects.py)."""
+    cfg = SceneConfig(width=320, height=240, frames=1500, seed=7, objects=6, passing=True)
+    seen = np.zeros((cfg.objects, cfg.frames), dtype=bool)
+    border = np.zeros((cfg.objects, cfg.frames), dtype=bool)
+    for frame in render(cfg):
+        for obj, box in enumerate(frame.boxes):
+            seen[obj, frame.index] = box is not None
+            if box is not None:
+                x, y, w, h = box
+                border[obj, frame.index] = x == 0 or y == 0 or x + w == cfg.width or y + h == cfg.height
+    for obj in range(cfg.objects):
+        frames = np.flatnonzero(seen[obj])
+        assert frames.size, obj
+        assert frames[-1] - frames[0] + 1 == frames.size, f"object {obj} is in view more than once"
+        assert frames.size < 0.6 * cfg.frames, obj
+        if frames[0] > 0:
+            assert border[obj, frames[0]], f"object {obj} appears inside the view"
+        if frames[-1] < cfg.frames - 1:
+            assert border[obj, frames[-1]], f"object {obj} vanishes inside the view"
+    assert len({int(np.flatnonzero(s)[0]) for s in seen}) == cfg.objects  # each enters at its own time
+    assert build_parser().parse_args(["clip", "--passing"]).passing

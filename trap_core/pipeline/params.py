@@ -155,7 +155,12 @@ class TrapParams:
     ignore_top: float = _p(0.1, "share of the top levels of the hierarchy the lifetime cut ignores")
     n_objects: int = _p(0, "objects to track; 0 = found without supervision (ours)")
     length_tolerance: float = _p(0.1, "share of the video: clusters this close to the longest compete")
-    min_track_length: float = _p(0.25, "share of the video a track must cover when n_objects = 0 (ours)")
+    min_track_length: float = _p(0.25, "share of the video a track must cover when n_objects = 0, at most "
+                                       "min_track_frames frames (ours)")
+    min_track_frames: int = _p(200, "frames: a track of a long video need not cover more than this, whatever "
+                                    "min_track_length asks (ours; 200 = 8 s at 25 Hz, more than the share asks of "
+                                    "a video of up to 800 frames): objects that pass through the view are in it "
+                                    "for seconds, not for a share of the video; 0 = min_track_length alone")
     separation: float = _p(40.0, "px (of the working size, max_side): a cluster this close to kept tracks in most "
                                  "of its frames is not a new object (ours)")
     threads: int = _p(2, "segmentation threads")
@@ -183,6 +188,7 @@ class TrapParams:
             (0 <= self.ignore_top < 1 and 0 <= self.length_tolerance <= 1,
              "ignore_top must be within [0, 1) and length_tolerance within [0, 1]"),
             (self.n_objects >= 0 and 0 <= self.min_track_length <= 1, "n_objects >= 0, min_track_length within [0, 1]"),
+            (self.min_track_frames >= 0, "min_track_frames must be >= 0"),
             (self.separation >= 0 and 1 <= self.threads <= 64, "separation >= 0 and threads within 1..64"),
             (self.size_jump == 0 or self.size_jump > 1, "size_jump must be 0 (off) or more than 1"),
             (self.link_reach >= 0, "link_reach must be >= 0"),
@@ -226,6 +232,15 @@ class TrapParams:
         reads each step with the frame (2.5 ms a frame, README "Camera motion from the images")
         only then: the paper's method never looks at it."""
         return self.reads_camera and self.image_motion
+
+    def track_length(self, n_frames: int) -> float:
+        """Share of a video of ``n_frames`` a track must cover when the number of objects is not
+        given: ``min_track_length``, but never more than ``min_track_frames`` frames. A share
+        alone asks an object of a long video (a chunk is 9000 frames) to stay in view for
+        minutes; one that passes through it never would."""
+        if not self.min_track_frames or n_frames <= 0:
+            return self.min_track_length
+        return min(self.min_track_length, self.min_track_frames / n_frames)
 
     def as_dict(self) -> dict[str, Any]:
         return dataclasses.asdict(self)

@@ -101,8 +101,8 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
     if robust and params.one_track:
         tracks = merge_duplicates(tracks, params.tau)
     if own_frames and not params.n_objects:
-        twins = twin_clusters(summary, selected, n_frames, params.min_track_length, params.separation, params.tau,
-                              moving)
+        twins = twin_clusters(summary, selected, n_frames, params.track_length(n_frames), params.separation,
+                              params.tau, moving)
         tracks = extend_from_twins(tracks, [tracks_of(cluster) for cluster in twins], params.tau, params.size_jump,
                                    view=view)
     placed = GroupBoxes({})
@@ -150,7 +150,7 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=False, min_gap=params.tau)
     if not params.n_objects:
-        tracks = keep_one_size(tracks, params.tau, int(params.min_track_length * n_frames))
+        tracks = keep_one_size(tracks, params.tau, int(params.track_length(n_frames) * n_frames))
     return tracks
 
 

@@ -30,6 +30,8 @@ def build_parser() -> argparse.ArgumentParser:
                         help="cells: coloured Voronoi cells (the paper's Anim videos); road: asphalt with lane "
                              "markings; or a scikit-image photograph the camera pans over (other scenes)")
     parser.add_argument("--no-exits", action="store_true", help="no object leaves the field of view")
+    parser.add_argument("--passing", action="store_true",
+                        help="objects pass through the view once each, entering and leaving at their own times")
     spelled = {name.lower(): name for name in SUPPORTED_ENCODINGS}
     parser.add_argument("--encoding", choices=SUPPORTED_ENCODINGS, default="rgb8",
                         type=lambda name: spelled.get(name.lower(), name), help="as ROS spells it (any case)")

@@ -5,7 +5,9 @@ A camera pans over a wide world of coloured Voronoi cells sprinkled with small i
 made of several coloured parts (car-like boxes by default; tall "persons", round "discs", or a
 mix: ``SHAPES``) move in image space along piecewise-linear paths with abrupt
 turns, cross and occlude each other (fixed depth order); the last object leaves the field of
-view for 3-4 s several times. Everything is drawn with exact colours (no anti-aliasing), so the
+view for 3-4 s several times. With ``passing``, objects instead pass through: each enters once
+through a border at its own time, crosses the view and leaves for good, as traffic under a
+drone does. Everything is drawn with exact colours (no anti-aliasing), so the
 ground-truth box of an object is the box of its visible pixels, computed while drawing.
 """
 from __future__ import annotations
@@ -61,6 +63,7 @@ class SceneConfig:
     noise: float = 0.0
     illumination: float = 0.0
     exits: bool = True
+    passing: bool = False  # objects pass through the view once each, at their own times (no object stays)
     object_scale: float = 1.0
     rotation: float = 0.0  # degrees: the camera also turns (yaw), up to this either way
     zoom: float = 0.0      # the camera also zooms, up to this share in and out
@@ -199,13 +202,15 @@ def _photo(name: str, world_w: int, world_h: int) -> np.ndarray:
 
 def _object_paths(rng: np.random.Generator, cfg: SceneConfig) -> np.ndarray:
     """Piecewise-linear image-space paths (top-left corners) with abrupt turns; every third leg
-    heads for the centre (so paths cross); the last object leaves the view for 3-4 s every ~6-9 s."""
+    heads for the centre (so paths cross); the last object leaves the view for 3-4 s every ~6-9 s.
+    With ``cfg.passing``, :func:`_passing_paths` instead."""
+    if cfg.passing:
+        return _passing_paths(rng, cfg)
     paths = np.empty((cfg.objects, cfg.frames, 2))
-    low = np.array([0.02 * cfg.width, 0.02 * cfg.height])
     scale = cfg.width / 640
     for obj in range(cfg.objects):
         w, h = cfg.size_of(obj)
-        high = np.array([cfg.width - w - 0.02 * cfg.width, cfg.height - h - 0.02 * cfg.height])
+        low, high = _corner_range(cfg, obj)
         centre = (low + high) / 2
         leaves = cfg.exits and obj == cfg.objects - 1 and cfg.objects > 0
         pos = rng.uniform(low, high)
@@ -228,6 +233,44 @@ def _object_paths(rng: np.random.Generator, cfg: SceneConfig) -> np.ndarray:
             frame, pos = _walk(paths[obj], frame, pos, target, rng.uniform(1.5, 4.0) * scale)
             leg += 1
     return paths
+
+
+def _passing_paths(rng: np.random.Generator, cfg: SceneConfig) -> np.ndarray:
+    """Paths of objects that each pass through the view once: out of view until a time drawn over
+    the video, in through a random border, one to three legs to points in view, out through a
+    random border, and out of view for the rest of the video. An object is in view for a few
+    hundred frames however long the video, so a long video holds short tracks: what footage of
+    traffic or passers-by gives, and the paper's videos (every object in view throughout) do not."""
+    paths = np.empty((cfg.objects, cfg.frames, 2))
+    scale = cfg.width / 640
+    for obj in range(cfg.objects):
+        w, h = cfg.size_of(obj)
+        low, high = _corner_range(cfg, obj)
+        pos = _outside(rng, cfg, w, h, low, high)
+        enters = int(rng.uniform(0, 0.85 * cfg.frames))
+        paths[obj, :enters] = pos
+        frame = enters
+        for _ in range(int(rng.integers(1, 4))):
+            frame, pos = _walk(paths[obj], frame, pos, rng.uniform(low, high), rng.uniform(1.5, 4.0) * scale)
+        frame, pos = _walk(paths[obj], frame, pos, _outside(rng, cfg, w, h, low, high),
+                           rng.uniform(1.5, 4.0) * scale)
+        paths[obj, frame:] = pos
+    return paths
+
+
+def _corner_range(cfg: SceneConfig, obj: int) -> tuple[np.ndarray, np.ndarray]:
+    """Least and greatest top-left corner of object ``obj`` inside the view, 2 % of it from its edges."""
+    w, h = cfg.size_of(obj)
+    margin = np.array([0.02 * cfg.width, 0.02 * cfg.height])
+    return margin, np.array([cfg.width - w, cfg.height - h]) - margin
+
+
+def _outside(rng: np.random.Generator, cfg: SceneConfig, w: int, h: int, low: np.ndarray,
+             high: np.ndarray) -> np.ndarray:
+    """A top-left corner that puts a ``w`` x ``h`` object just out of view beyond a random border."""
+    x, y = rng.uniform(low, high)
+    side = int(rng.integers(4))
+    return np.array([(-1.6 * w, y), (cfg.width + 0.6 * w, y), (x, -1.6 * h), (x, cfg.height + 0.6 * h)][side])
 
 
 def _walk(path: np.ndarray, frame: int, start: np.ndarray, target: np.ndarray, speed: float) -> tuple[int, np.ndarray]:

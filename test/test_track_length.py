@@ -1,0 +1,35 @@
+"""How long a track must be without a given number of objects: a share of the video, capped in frames."""
+from __future__ import annotations
+
+import pytest
+
+from trap_core.evaluation import boxes_by_frame, match_objects
+from trap_core.pipeline import ParameterError, TrapParams, synthetic_graphs, track
+from trap_core.synthetic import SceneConfig
+
+
+def test_the_share_of_the_video_is_capped_in_frames() -> None:
+    params = TrapParams()
+    assert params.track_length(721) == params.min_track_length  # the share asks 180 frames: under the cap
+    assert params.track_length(9000) * 9000 == pytest.approx(params.min_track_frames)  # a chunk: 200, not 2250
+    assert TrapParams(min_track_frames=0).track_length(9000) == params.min_track_length
+    with pytest.raises(ParameterError, match="min_track_frames"):
+        TrapParams(min_track_frames=-1)
+
+
+def test_objects_passing_through_a_long_video_are_tracked() -> None:
+    """Four objects pass through a 1000-frame view, each in it for 23-33 % of the video. The first
+    (232 frames) is under a quarter of the video, and only the cap in frames keeps its track."""
+    params = TrapParams.from_mapping({"segmentation": "colour", "max_side": 0})
+    graphs, truth = synthetic_graphs(SceneConfig(width=320, height=240, frames=1000, seed=2, objects=4,
+                                                 passing=True), params)
+    assert len(truth[0]) < params.min_track_length * len(graphs) <= min(len(t) for t in truth[1:])
+
+    def found(tracking: TrapParams) -> list[tuple[float, float]]:
+        tracks = track(graphs, tracking).tracks
+        return [(precision, recall) for _, precision, recall in match_objects([boxes_by_frame(t) for t in tracks],
+                                                                              truth)]
+    assert all(precision >= 0.9 and recall >= 0.9 for precision, recall in found(params))
+    precision, recall = found(TrapParams.from_mapping({"segmentation": "colour", "max_side": 0,
+                                                       "min_track_frames": 0}))[0]
+    assert recall < 0.5  # a share of the video alone asks more of it

@@ -5,8 +5,8 @@ Every video of ``quality.py`` keeps its objects in view nearly throughout (only 
 comes back), as the paper's do. Footage of traffic or passers-by is otherwise: an object enters,
 crosses and is gone, and a long video holds many such short tracks. These videos
 (``SceneConfig.passing``: each object enters once, at a time drawn over the video, and leaves
-for good) are 1000 to 3000 frames long; each object is in view for about 150 to 600 frames,
-5 to 60 % of its video. Prints the ``quality.py`` table and summary; graphs are cached as
+for good) are 1000 to 4000 frames long, with 6 to 30 objects; each object is in view for 110 to
+730 frames, 4 to 46 % of its video. Prints the ``quality.py`` table and summary; graphs are cached as
 ``quality.py`` caches them.
 Run: ``.venv/bin/python benchmarks/passing_objects.py [--pictures DIR] [-p name:=value]``
 """
@@ -35,6 +35,8 @@ PASSING = [
      "felzenszwalb"),
     ("distinct, car, 6 objects, 1000 frames, road", dict(seed=7006, objects=6, frames=1000, background="road",
                                                          passing=True), "felzenszwalb"),
+    ("distinct, mixed shapes, 30 objects, 4000 frames", dict(seed=7007, shape="mixed", objects=30, frames=4000,
+                                                             passing=True), "felzenszwalb"),
 ]
 
 

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import pytest
 
+from trap_core.clustering import MAX_TRACKS
 from trap_core.evaluation import boxes_by_frame, match_objects
 from trap_core.pipeline import ParameterError, TrapParams, synthetic_graphs, track
 from trap_core.synthetic import SceneConfig
@@ -15,6 +16,14 @@ def test_the_share_of_the_video_is_capped_in_frames() -> None:
     assert TrapParams(min_track_frames=0).track_length(9000) == params.min_track_length
     with pytest.raises(ParameterError, match="min_track_frames"):
         TrapParams(min_track_frames=-1)
+
+
+def test_a_long_video_may_hold_as_many_more_tracks_as_they_need_cover_fewer_frames() -> None:
+    params = TrapParams()
+    assert params.max_tracks(721) == MAX_TRACKS  # a track covers a quarter of the video: the bound as it was
+    assert params.max_tracks(4000) == 5 * MAX_TRACKS  # 200 frames instead of 1000
+    assert params.max_tracks(9000) == 11 * MAX_TRACKS
+    assert TrapParams(min_track_frames=0).max_tracks(9000) == TrapParams(min_track_length=0).max_tracks(9000) == MAX_TRACKS
 
 
 def test_objects_passing_through_a_long_video_are_tracked() -> None:

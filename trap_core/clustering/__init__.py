@@ -3,7 +3,8 @@
 from trap_core.clustering.distance import pattern_distances
 from trap_core.clustering.errors import ClusteringError
 from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns, labels_after_merges, lifetime_cut
-from trap_core.clustering.selection import ClusterSummary, seen_frames, select_clusters, summarise, twin_clusters
+from trap_core.clustering.selection import (MAX_TRACKS, ClusterSummary, seen_frames, select_clusters, summarise,
+                                           twin_clusters)
 from trap_core.clustering.tracks import (FrameCores, Track, box_centres, box_containment, box_iou, box_path,
                                         build_track, centre_inside, centre_path, centre_steps, core_regions,
                                         frame_cores, in_rows, one_place, reaches_border, region_boxes_reach_border,
@@ -12,6 +13,7 @@ from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observe
 
 __all__ = [
     "LINKAGES",
+    "MAX_TRACKS",
     "ClusterSummary",
     "ClusteringError",
     "FrameCores",

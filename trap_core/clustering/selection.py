@@ -10,6 +10,7 @@ from trap_core.clustering.tracks import region_boxes_reach_border
 from trap_core.clustering.trajectory import Trajectories
 from trap_core.mining import MiningResult
 
+MAX_TRACKS = 20  # no more tracks than this in a video where a track covers a share of it (min_length)
 APART_SHARE = 0.9  # share of its frames a cluster seen in under min_length of the video must lie apart from tracks
 
 
@@ -75,7 +76,7 @@ def seen_frames(result: MiningResult, patterns: np.ndarray, labels: np.ndarray,
 
 def select_clusters(summary: ClusterSummary, n_frames: int, n_objects: int | None = None,
                     tolerance: float = 0.1, min_length: float = 0.25, separation: float = 40.0,
-                    max_objects: int = 20, eligible: np.ndarray | None = None, own_frames: bool = False,
+                    max_objects: int = MAX_TRACKS, eligible: np.ndarray | None = None, own_frames: bool = False,
                     seen: np.ndarray | None = None) -> list[int]:
     """Clusters that are tracks, in order of selection.
 

@@ -5,7 +5,7 @@ import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
-from trap_core.clustering import LINKAGES
+from trap_core.clustering import LINKAGES, MAX_TRACKS
 from trap_core.mining import MiningParams
 from trap_core.segmentation import THRESHOLD_MODES
 
@@ -241,6 +241,15 @@ class TrapParams:
         if not self.min_track_frames or n_frames <= 0:
             return self.min_track_length
         return min(self.min_track_length, self.min_track_frames / n_frames)
+
+    def max_tracks(self, n_frames: int) -> int:
+        """At most how many tracks a video of ``n_frames`` gets when the number of objects is not
+        given: ``MAX_TRACKS`` (a bound for videos whose tracks cover ``min_track_length`` of them)
+        as many times over as :meth:`track_length` asks less than that share. Where a track need
+        cover only a tenth as many frames, ten times as many objects can pass through the video
+        one after another (a chunk of traffic: 11 times, 220 tracks)."""
+        share = self.track_length(n_frames)
+        return MAX_TRACKS * max(1, round(self.min_track_length / share)) if share > 0 else MAX_TRACKS
 
     def as_dict(self) -> dict[str, Any]:
         return dataclasses.asdict(self)

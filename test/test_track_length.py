@@ -42,3 +42,15 @@ def test_objects_passing_through_a_long_video_are_tracked() -> None:
     precision, recall = found(TrapParams.from_mapping({"segmentation": "colour", "max_side": 0,
                                                        "min_track_frames": 0}))[0]
     assert recall < 0.5  # a share of the video alone asks more of it
+
+
+def test_more_objects_than_the_bound_of_a_short_video_pass_through_a_long_one() -> None:
+    """28 objects pass through a 2400-frame view, up to 9 at a time: more tracks than ``MAX_TRACKS``
+    are kept (the bound grows as the track length shrinks), each on its own object."""
+    params = TrapParams.from_mapping({"segmentation": "colour", "max_side": 0})
+    graphs, truth = synthetic_graphs(SceneConfig(width=320, height=240, frames=2400, seed=3, objects=28,
+                                                 passing=True), params)
+    tracks = track(graphs, params).tracks
+    assert len(tracks) > MAX_TRACKS
+    found = match_objects([boxes_by_frame(t) for t in tracks], truth)
+    assert sum(precision >= 0.9 and recall >= 0.9 for _, precision, recall in found) > MAX_TRACKS

@@ -38,6 +38,17 @@ def test_held_objects_follow_a_track_that_trades_and_leaves_its_object(tmp_path:
     assert picture.stat().st_size > 1000
 
 
+def test_no_object_is_drawn_in_the_grey_of_a_track_on_no_object() -> None:
+    """With more objects than colours (traffic passing through a long video) colours repeat, but
+    none is a grey, which would read as a track on the background."""
+    import matplotlib.pyplot as plt
+
+    from trap_core.evaluation.held_objects import OBJECT_SHADES
+    shades = [plt.get_cmap("tab20")(index)[:3] for index in OBJECT_SHADES]
+    assert len(set(shades)) == len(shades) == 18
+    assert all(max(shade) - min(shade) > 0.1 for shade in shades)
+
+
 def test_leaked_pixels_are_object_pixels_in_regions_mostly_of_background() -> None:
     labels = np.array([[0, 0, 0, 1, 1],
                        [0, 0, 0, 1, 2]])

@@ -18,6 +18,12 @@ from trap_core.outputs.timeline import frame_runs
 
 Boxes = dict[int, tuple]  # frame (0-based) -> (x, y, w, h), as the scores take them
 NONE = -1  # the track's box centre lies in no object's box
+NONE_GREY = "0.6"  # its bars' colour
+# Objects' colours: matplotlib's tab20 without its two greys (which a track on no object is drawn
+# in), the ten strong shades first (tab10's but its grey), then their pale twins: a video of more
+# objects than that (traffic passing through the view) repeats them, but never shows an object
+# as grey.
+OBJECT_SHADES = (0, 2, 4, 6, 8, 10, 12, 16, 18, 1, 3, 5, 7, 9, 11, 13, 17, 19)
 
 
 def held_objects(track: Boxes, truth: Sequence[Boxes]) -> dict[int, int]:
@@ -47,7 +53,10 @@ def object_timeline(boxes_per_track: Sequence[Boxes], truth: Sequence[Boxes], n_
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    colours = plt.get_cmap("tab10")
+    tab20 = plt.get_cmap("tab20")
+
+    def colour(obj: int) -> str | tuple:
+        return NONE_GREY if obj == NONE else tab20(OBJECT_SHADES[obj % len(OBJECT_SHADES)])
     rows = len(boxes_per_track) + len(truth)
     figure, axes = plt.subplots(figsize=(10, 1.4 + 0.3 * max(rows, 1)), dpi=100)
     for row, track in enumerate(boxes_per_track):
@@ -56,10 +65,10 @@ def object_timeline(boxes_per_track: Sequence[Boxes], truth: Sequence[Boxes], n_
         objects = np.array([held[f] for f in frames.tolist()], dtype=np.int64)
         for obj in np.unique(objects).tolist():  # frames are whole: a run of one object's frames holds no other
             axes.broken_barh([(first + 1, length) for first, length in frame_runs(frames[objects == obj])],
-                             (row - 0.35, 0.7), linewidth=0, facecolors="0.6" if obj == NONE else colours(obj % 10))
+                             (row - 0.35, 0.7), linewidth=0, facecolors=colour(obj))
     for obj, boxes in enumerate(truth):
         axes.broken_barh([(first + 1, length) for first, length in frame_runs(np.array(sorted(boxes), dtype=np.int64))],
-                         (len(boxes_per_track) + obj - 0.2, 0.4), linewidth=0, facecolors=colours(obj % 10))
+                         (len(boxes_per_track) + obj - 0.2, 0.4), linewidth=0, facecolors=colour(obj))
     labels = [f"track {k + 1}" for k in range(len(boxes_per_track))]
     labels += [f"object {k + 1}" for k in range(len(truth))]
     axes.set_yticks(range(rows), labels)

@@ -14,6 +14,7 @@ def test_the_share_of_the_video_is_capped_in_frames() -> None:
     assert params.track_length(721) == params.min_track_length  # the share asks 180 frames: under the cap
     assert params.track_length(9000) * 9000 == pytest.approx(params.min_track_frames)  # a chunk: 200, not 2250
     assert TrapParams(min_track_frames=0).track_length(9000) == params.min_track_length
+    assert params.track_frames(721) == 180 and params.track_frames(1078) == params.min_track_frames
     with pytest.raises(ParameterError, match="min_track_frames"):
         TrapParams(min_track_frames=-1)
 
@@ -23,7 +24,8 @@ def test_a_long_video_may_hold_as_many_more_tracks_as_they_need_cover_fewer_fram
     assert params.max_tracks(721) == MAX_TRACKS  # a track covers a quarter of the video: the bound as it was
     assert params.max_tracks(4000) == 5 * MAX_TRACKS  # 200 frames instead of 1000
     assert params.max_tracks(9000) == 11 * MAX_TRACKS
-    assert TrapParams(min_track_frames=0).max_tracks(9000) == TrapParams(min_track_length=0).max_tracks(9000) == MAX_TRACKS
+    assert TrapParams(min_track_frames=0).max_tracks(9000) == MAX_TRACKS
+    assert TrapParams(min_track_length=0).max_tracks(9000) == MAX_TRACKS
 
 
 def test_objects_passing_through_a_long_video_are_tracked() -> None:

@@ -242,6 +242,13 @@ class TrapParams:
             return self.min_track_length
         return min(self.min_track_length, self.min_track_frames / n_frames)
 
+    def track_frames(self, n_frames: int) -> int:
+        """:meth:`track_length` in whole frames: ``min_track_length`` of the video rounded down,
+        and never more than ``min_track_frames`` (the share times the frames can fall a hair
+        under it in floating point)."""
+        frames = int(self.min_track_length * n_frames)
+        return min(frames, self.min_track_frames) if self.min_track_frames else frames
+
     def max_tracks(self, n_frames: int) -> int:
         """At most how many tracks a video of ``n_frames`` gets when the number of objects is not
         given: ``MAX_TRACKS`` (a bound for videos whose tracks cover ``min_track_length`` of them)

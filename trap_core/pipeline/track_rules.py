@@ -150,7 +150,7 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=False, min_gap=params.tau)
     if not params.n_objects:
-        tracks = keep_one_size(tracks, params.tau, int(params.track_length(n_frames) * n_frames))
+        tracks = keep_one_size(tracks, params.tau, params.track_frames(n_frames))
     return tracks
 
 

@@ -74,13 +74,9 @@ def main() -> None:
         parser.error(f"--videos must be at least 1, not {args.videos}")
     quality.check_overrides(parser, args.overrides)
     name = f"drawn with generator {args.generator}"
-    print(f"### {name}\n\n{quality.TABLE_HEAD}")
-    scores = []
-    for index, (label, scene) in enumerate(drawn_scenes(args.generator, args.videos)):
-        pictures = args.pictures / f"{args.generator}_{index}_{quality.slug(label)}" if args.pictures else None
-        scores.append(quality.score_video(label, scene, "felzenszwalb", args.cache, dict(args.overrides), pictures))
-        print(scores[-1].row, flush=True)
-    print(f"\n{quality.set_summary(name, scores)}")
+    print(f"### {name}\n")
+    videos = [(label, scene, "felzenszwalb") for label, scene in drawn_scenes(args.generator, args.videos)]
+    quality.score_set(name, videos, args, lambda index, label: f"{args.generator}_{index}_{quality.slug(label)}")
 
 
 if __name__ == "__main__":

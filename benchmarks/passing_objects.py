@@ -45,13 +45,8 @@ def main() -> None:
     quality.add_run_arguments(parser)
     args = parser.parse_args()
     quality.check_overrides(parser, args.overrides)
-    print(f"### passing\n\n{quality.TABLE_HEAD}")
-    scores = []
-    for label, scene, segmentation in PASSING:
-        pictures = args.pictures / f"passing_{quality.slug(label)}" if args.pictures else None
-        scores.append(quality.score_video(label, scene, segmentation, args.cache, dict(args.overrides), pictures))
-        print(scores[-1].row, flush=True)
-    print(f"\n{quality.set_summary('passing', scores)}")
+    print("### passing\n")
+    quality.score_set("passing", PASSING, args, lambda _, label: f"passing_{quality.slug(label)}")
 
 
 if __name__ == "__main__":

@@ -34,6 +34,7 @@ import inspect
 import pickle
 import re
 import time
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import NamedTuple
 
@@ -599,6 +600,22 @@ def set_summary(name: str, scores: list[VideoScore]) -> str:
             f"mean IDF1 {np.mean([score.id_f1 for score in scores]):.2f}")
 
 
+def score_set(name: str, videos: Sequence[tuple[str, dict, str]], args: argparse.Namespace,
+              picture_name: Callable[[int, str], str]) -> list[VideoScore]:
+    """Score ``videos`` (label, scene, segmentation) with :func:`score_video` and ``args``' cache,
+    overrides and pictures (the picture of video ``index`` named ``picture_name(index, label)``),
+    printing the table row by row as each is tracked, then the set's summary line
+    (:func:`set_summary` under ``name``); the scores are returned."""
+    print(TABLE_HEAD)
+    scores = []
+    for index, (label, scene, segmentation) in enumerate(videos):
+        pictures = args.pictures / picture_name(index, label) if args.pictures else None
+        scores.append(score_video(label, scene, segmentation, args.cache, dict(args.overrides), pictures))
+        print(scores[-1].row, flush=True)
+    print(f"\n{set_summary(name, scores)}")
+    return scores
+
+
 def check_arguments(parser: argparse.ArgumentParser, sets: str, overrides: list[tuple[str, object]]) -> None:
     """End the run in one line (``parser.error``) on an unknown set or a bad parameter, before any
     video is made, rather than with a traceback at the first video that reaches it."""
@@ -634,13 +651,8 @@ def main() -> None:
     check_arguments(parser, args.sets, args.overrides)
     all_good: list[bool] = []
     for name in args.sets.split(","):
-        print(f"\n### {name}\n\n{TABLE_HEAD}")
-        scores = []
-        for label, scene, segmentation in SETS[name]:
-            scores.append(score_video(label, scene, segmentation, args.cache, dict(args.overrides),
-                                      args.pictures / f"{name}_{slug(label)}" if args.pictures else None))
-            print(scores[-1].row, flush=True)
-        print(f"\n{set_summary(name, scores)}")
+        print(f"\n### {name}\n")
+        scores = score_set(name, SETS[name], args, lambda _, label: f"{name}_{slug(label)}")
         all_good += [good for score in scores for good in score.good]
     print(f"\nall sets: objects at 90/90 {sum(all_good)}/{len(all_good)}")
 

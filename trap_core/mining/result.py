@@ -50,10 +50,12 @@ class MiningResult:
     def rows_of(self, patterns: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Occurrence rows of the spatio-temporal patterns ``patterns`` (increasing), pattern after
         pattern, and for each row the index in ``patterns`` of the pattern it belongs to."""
-        lengths = self.st_occurrences
-        chosen = np.zeros(self.n_st, dtype=bool)
-        chosen[patterns] = True
-        return self.st_rows[np.repeat(chosen, lengths)], np.repeat(np.arange(len(patterns)), lengths[patterns])
+        # each pattern's slice of st_rows, read directly: a cluster's rows cost what it holds, not
+        # what the video holds (rules read them for hundreds of clusters of a long video)
+        lengths = self.st_occurrences[patterns]
+        before = np.cumsum(lengths) - lengths
+        slots = np.repeat(self.st_offsets[patterns] - before, lengths) + np.arange(int(lengths.sum()))
+        return self.st_rows[slots], np.repeat(np.arange(len(patterns)), lengths)
 
     def freq_st(self) -> np.ndarray:
         """(S,) distinct frames of each spatio-temporal pattern."""

@@ -31,6 +31,7 @@ from __future__ import annotations
 import argparse
 import hashlib
 import inspect
+import os
 import pickle
 import re
 import time
@@ -525,8 +526,12 @@ def _graphs(scene: dict, segmentation: str, cache: Path, overrides: dict | None 
     config, delivery = _scene_config(scene)
     graphs, truth = synthetic_graphs(config, params, **delivery)
     cache.mkdir(parents=True, exist_ok=True)
-    with open(path, "wb") as f:
+    # written whole, then renamed: two runs that make one video's graphs at once (quality.py and
+    # fresh_draws.py side by side) never read the other's half-written file
+    partial = path.with_name(f"{path.name}.{os.getpid()}.part")
+    with open(partial, "wb") as f:
         pickle.dump((graphs, truth), f)
+    os.replace(partial, path)
     return graphs, truth
 
 

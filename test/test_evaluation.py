@@ -117,7 +117,7 @@ def test_evaluate_writes_a_report(tmp_path: Path, venv_bin: Path) -> None:
     assert list(methods) == ["paper", "+ one path per object", "+ steps within reach", "+ label memory",
                              "+ camera motion", "+ camera motion from the images", "+ steady steps",
                              "+ own region moves", "+ one object per cluster", "+ rejoin fragments",
-                             "+ core boxes",
+                             "+ colours across exits", "+ core boxes",
                              "+ background out of boxes", "+ grown boxes", "+ edge lines out of boxes",
                              "+ filled gaps", "+ one track per object", "+ own frames, twin clusters",
                              "+ steady box size", "+ where objects meet",

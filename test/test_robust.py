@@ -11,7 +11,7 @@ from trap_core.evaluation import box_precision_recall, boxes_by_frame
 from trap_core.mining import MiningResult
 from trap_core.mining._kernels import assign_occurrences, link_occurrences
 from trap_core.pipeline import TrapParams, frame_graph, synthetic_graphs, track
-from trap_core.robust import BorderContacts, camera_transforms, rejoin_fragments, world_speed
+from trap_core.robust import BorderContacts, camera_transforms, colours_match, rejoin_fragments, world_speed
 from trap_core.synthetic import PRESETS, SceneConfig
 
 
@@ -348,6 +348,53 @@ def test_rejoin_brings_back_an_object_that_left_by_what_it_shows_not_where_it_co
     assert plain[0] == plain[3] != plain[4]  # the better prediction wins without border contacts
     joined = rejoin_fragments(labels, paths, pattern, 140, max_overlap=0, at_border=_sure(enters, leaves))
     assert joined[0] == joined[4] != joined[3]
+
+
+class _Colours:
+    """Stands for :class:`trap_core.robust.EndColours`: one match for every pair, and the pairs asked."""
+
+    def __init__(self, match: float) -> None:
+        self.value, self.asked = match, []
+
+    def match(self, earlier: int, later: int) -> float:
+        self.asked.append((earlier, later))
+        return self.value
+
+
+def test_rejoin_continues_an_object_that_left_only_with_one_of_its_colours() -> None:
+    """An object leaves through the right border (frame 54) and one with the same structures
+    enters there at frame 100: it is the object back only if its colours match. A fragment that
+    vanishes inside the view for up to ``lone_gap`` frames is continued by its motion, its colours
+    not asked; one away for longer must have them."""
+    line = lambda n, x0, dx, y: np.column_stack([x0 + dx * np.arange(n), np.full(n, y)])  # noqa: E731
+    paths = _paths([(0, line(55, 455, 3, 100.0)), (100, line(40, 630, -3, 100.0))])
+    pattern, sure = np.array([5, 5]), _sure(np.array([False, True]), np.array([True, False]))
+    alike, other = _Colours(0.9), _Colours(0.1)
+    joined = rejoin_fragments(np.arange(2), paths, pattern, 140, max_overlap=0, at_border=sure, colours=alike)
+    assert joined[0] == joined[1] and alike.asked == [(0, 1)]
+    assert np.unique(rejoin_fragments(np.arange(2), paths, pattern, 140, max_overlap=0, at_border=sure,
+                                      colours=other)).size == 2
+    inside = _sure(np.array([False, False]), np.array([False, False]))
+    for start, joined in ((60, True), (100, False)):  # 20 frames hidden, then 60
+        hidden = _paths([(0, line(40, 200, 3, 100.0)), (start, line(40, 200 + 3 * start, 3, 100.0))])
+        other.asked.clear()
+        occluded = rejoin_fragments(np.arange(2), hidden, pattern, 140, max_overlap=0, at_border=inside,
+                                    lone_gap=25, colours=other)
+        assert (occluded[0] == occluded[1]) == joined and len(other.asked) == (not joined)
+    alike_after_long = rejoin_fragments(np.arange(2), hidden, pattern, 140, max_overlap=0, at_border=inside,
+                                        lone_gap=25, colours=alike)
+    assert alike_after_long[0] == alike_after_long[1]
+
+
+def test_colours_match_under_another_light_and_on_other_parts_but_not_other_colours() -> None:
+    body, window, wheel = [200.0, 40.0, 40.0], [90.0, 150.0, 220.0], [30.0, 30.0, 30.0]
+    colours, areas = np.array([body, window]), np.array([300.0, 100.0])
+    assert colours_match(colours, areas, colours * 1.15, areas, 20.0) == pytest.approx(1.0)  # brighter light
+    assert colours_match(colours, areas, np.array([body, wheel]), np.array([300.0, 80.0]), 20.0) == \
+        pytest.approx(300 / 380)  # the body at both ends, a window at one, a wheel at the other: the larger way
+    assert colours_match(colours, areas, np.array([window]), np.array([50.0]), 20.0) == pytest.approx(1.0)
+    assert colours_match(colours, areas, colours + [0.0, 45.0, 0.0], areas, 20.0) == 0.0  # other greens
+    assert colours_match(colours, areas, np.zeros((0, 3)), np.zeros(0), 20.0) == 1.0  # nothing seen: no evidence
 
 
 def test_rejoin_continues_a_fragment_that_broke_up_short_of_the_border_with_one_that_enters() -> None:

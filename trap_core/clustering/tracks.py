@@ -188,12 +188,18 @@ def build_track(result: MiningResult, pattern_labels: np.ndarray, cluster: int, 
     return Track(track_id, known, around, score, cluster, points)
 
 
-def _by_frame(result: MiningResult, patterns: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _by_frame(result: MiningResult, patterns: np.ndarray, end_frames: int = 0
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The occurrences of ``patterns`` in frame order (stable): the frames they are in, where
     each frame's end among them, their face sets (rows of ``occ_faces``) and the lifetime of
-    each one's pattern (its occurrences in the whole video)."""
+    each one's pattern (its occurrences in the whole video). With ``end_frames``, only those in
+    the first and the last ``end_frames`` frames they are in."""
     rows, owner = result.rows_of(patterns)
     frames = result.occ_frame[rows]
+    if end_frames and frames.size:
+        seen = np.unique(frames)
+        ends = (frames <= seen[min(end_frames, seen.size) - 1]) | (frames >= seen[-min(end_frames, seen.size)])
+        rows, owner, frames = rows[ends], owner[ends], frames[ends]
     order = np.argsort(frames, kind="stable")
     known, counts = np.unique(frames[order], return_counts=True)
     return known, np.cumsum(counts), result.occ_faces[rows[order]], result.st_occurrences[patterns][owner][order]
@@ -218,12 +224,15 @@ class FrameCores:
             yield (frame, self.core[core_starts[k]:self.core_ends[k]], self.top[top_starts[k]:self.top_ends[k]])
 
 
-def frame_cores(result: MiningResult, patterns: np.ndarray, graphs: StackedGraphs, share: float) -> FrameCores:
+def frame_cores(result: MiningResult, patterns: np.ndarray, graphs: StackedGraphs, share: float,
+                end_frames: int = 0) -> FrameCores:
     """Per frame where any of ``patterns`` occurs: the :func:`core_regions` of their occurrences
     there, all frames in one compiled pass (``graphs``: every frame's, stacked). Read once per
     cluster: its track's boxes and the still-region rule
-    (:func:`trap_core.robust.drop_still_regions`) both start from them."""
-    known, ends, face_sets, lifetimes = _by_frame(result, patterns)
+    (:func:`trap_core.robust.drop_still_regions`) both start from them. With ``end_frames``,
+    only the first and the last ``end_frames`` of those frames (what a fragment looks like at
+    its ends, :class:`trap_core.robust.EndColours`)."""
+    known, ends, face_sets, lifetimes = _by_frame(result, patterns, end_frames)
     return FrameCores(known, *_stacked_core_regions(face_sets.astype(np.int64).reshape(len(face_sets), -1),
                                                     lifetimes.astype(np.float64), known.astype(np.int64), ends,
                                                     graphs.node_offsets, graphs.face_base, graphs.face_offsets,

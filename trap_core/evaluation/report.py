@@ -31,14 +31,15 @@ from trap_core.progress import Progress  # noqa: E402
 # The ablation: the paper's method, then each step of the robust one added in turn (its parameter
 # back at its default), from one-to-one linking alone.
 _ROBUST_OFF = dict(link_reach=0.0, label_memory=False, min_speed=0.0, image_motion=False, steady_steps=0.0,
-                   own_region=False, one_object=False, rejoin=False, core_share=0.0, still_regions=False, grow=False,
-                   edge_lines=False, fill_gaps=False, one_track=False, own_frames=False, size_jump=0.0, groups=False,
-                   to_border=False)
+                   own_region=False, one_object=False, rejoin=False, rejoin_colour_reach=0.0, core_share=0.0,
+                   still_regions=False, grow=False, edge_lines=False, fill_gaps=False, one_track=False,
+                   own_frames=False, size_jump=0.0, groups=False, to_border=False)
 _ROBUST_STEPS = (("+ steps within reach", "link_reach"), ("+ label memory", "label_memory"),
                  ("+ camera motion", "min_speed"), ("+ camera motion from the images", "image_motion"),
                  ("+ steady steps", "steady_steps"), ("+ own region moves", "own_region"),
                  ("+ one object per cluster", "one_object"),
-                 ("+ rejoin fragments", "rejoin"), ("+ core boxes", "core_share"),
+                 ("+ rejoin fragments", "rejoin"), ("+ colours across exits", "rejoin_colour_reach"),
+                 ("+ core boxes", "core_share"),
                  ("+ background out of boxes", "still_regions"), ("+ grown boxes", "grow"),
                  ("+ edge lines out of boxes", "edge_lines"), ("+ filled gaps", "fill_gaps"),
                  ("+ one track per object", "one_track"),

@@ -112,6 +112,9 @@ class TrapParams:
                             "object back")
     rejoin_similarity: float = _p(0.3, "robust: share of a fragment (counted in occurrences) whose structures the "
                                        "other also has, needed to rejoin them")
+    rejoin_colour_reach: float = _p(20.0, "robust: fragments across an exit or a gap of more than tau frames are "
+                                          "rejoined only if their regions' colours agree within this RGB distance, "
+                                          "at one brightness ratio (ours); 0 = colours not compared")
     core_share: float = _p(0.8, "robust: track box from regions in at least this share of the occurrences, each "
                                 "counted by its pattern's lifetime; 0 = all")
     still_regions: bool = _p(True, "robust: a core region found again, tau/5 frames before and after, at most half as "

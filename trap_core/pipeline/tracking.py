@@ -16,7 +16,8 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.pipeline.track_rules import Clusters, ClusterTracks, tracks_of_clusters
 from trap_core.rag import PlaneGraph, StackedGraphs
-from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, alone_at_ends, border_contacts,
+from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, EndColours, alone_at_ends,
+                              border_contacts,
                               border_share, camera_paths, camera_transforms, cluster_world_speed, hand_to_owners,
                               held_share, moves_in_hops, pattern_sizes, rejoin_fragments, scene_patterns, shadowed,
                               split_mixed, stays_with_scene, steady_patterns, whole_patterns_apart, without_backdrop,
@@ -130,7 +131,10 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                                                       reach=params.tau),
                                       mined.st_occurrences[patterns], transforms,
                                       adjacent_gap=max(1, params.tau // 10), adjacent_reach=params.eps / 4,
-                                      lone_gap=params.tau, max_apart=params.eps)
+                                      lone_gap=params.tau, max_apart=params.eps,
+                                      colours=EndColours(result, patterns, np.unique(labels, return_inverse=True)[1],
+                                                         stacked, params.core_share, params.rejoin_colour_reach)
+                                      if params.rejoin_colour_reach > 0 else None)
         return hierarchy, labels
 
     hierarchy, labels = cluster(clustered, mined, sub_paths)

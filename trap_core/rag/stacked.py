@@ -29,6 +29,7 @@ class StackedGraphs:
     centroid: np.ndarray
     area: np.ndarray
     label: np.ndarray
+    colour: np.ndarray
     backdrop: np.ndarray
     thickness: np.ndarray
     nearest_in_colour: np.ndarray
@@ -54,7 +55,8 @@ class StackedGraphs:
                                       + [listed_base[-1:]]).astype(np.int64)
         face_half_edges = np.concatenate([g.face_half_edges + base for g, base in zip(graphs, half_edge_base)])
         return cls(starts([g.n_nodes for g in graphs]), stacked("bbox"), stacked("centroid"), stacked("area"),
-                   stacked("label"), stacked("backdrop"), stacked("thickness"), stacked("nearest_in_colour"),
+                   stacked("label"), stacked("colour"), stacked("backdrop"), stacked("thickness"),
+                   stacked("nearest_in_colour"),
                    np.concatenate([np.lexsort((g.centroid[:, 0], g.label)) for g in graphs]).astype(np.int64), face_base,
                    face_offsets, face_half_edges.astype(np.int64), stacked("he_origin").astype(np.int64))
 

@@ -11,6 +11,7 @@ from trap_core.robust.camera import (HOP_SHARE, camera_paths, camera_transforms,
                                      world_steps)
 from trap_core.robust.continuation import continue_tracks, join_handovers, mend_shared_stretches
 from trap_core.robust.crossings import lookalike_tracks, swap_at_crossings
+from trap_core.robust.end_colours import EndColours, colours_match
 from trap_core.robust.ends import alone_at_ends
 from trap_core.robust.duplicates import (drop_repeated_pieces, drop_shared_stretches, extend_from_twins,
                                          merge_duplicates, repeats_others)
@@ -28,13 +29,13 @@ from trap_core.robust.still import drop_still_regions
 from trap_core.robust.strays import drop_stray_pieces, drop_strays
 from trap_core.robust.through_groups import GroupBoxes, through_groups
 
-__all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderContacts", "GroupBoxes", "alone_at_ends",
-           "border_contacts", "border_share", "camera_paths", "camera_transforms", "cluster_world_speed",
-           "colour_overlap", "colour_shares", "continue_to_border", "continue_tracks", "drop_repeated_pieces",
-           "drop_shared_stretches", "drop_still_regions", "drop_stray_pieces", "drop_strays", "end_at_exits",
-           "extend_from_twins", "fill_gaps", "grow_boxes", "hand_to_owners", "held_share", "join_handovers",
-           "join_returns", "join_spare_returns", "keep_one_size", "lookalike_tracks", "mend_shared_stretches",
-           "merge_duplicates", "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments",
-           "repeats_others", "scene_patterns", "separate_groups", "shadowed", "split_mixed", "stays_with_scene",
-           "steady_patterns", "swap_at_crossings", "through_groups", "whole_patterns_apart", "without_backdrop",
-           "world_speed", "world_steps"]
+__all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderContacts", "EndColours", "GroupBoxes",
+           "alone_at_ends", "border_contacts", "border_share", "camera_paths", "camera_transforms",
+           "cluster_world_speed", "colour_overlap", "colour_shares", "colours_match", "continue_to_border",
+           "continue_tracks", "drop_repeated_pieces", "drop_shared_stretches", "drop_still_regions",
+           "drop_stray_pieces", "drop_strays", "end_at_exits", "extend_from_twins", "fill_gaps", "grow_boxes",
+           "hand_to_owners", "held_share", "join_handovers", "join_returns", "join_spare_returns", "keep_one_size",
+           "lookalike_tracks", "mend_shared_stretches", "merge_duplicates", "moves_in_hops", "pattern_sizes",
+           "reaches_border", "rejoin_fragments", "repeats_others", "scene_patterns", "separate_groups", "shadowed",
+           "split_mixed", "stays_with_scene", "steady_patterns", "swap_at_crossings", "through_groups",
+           "whole_patterns_apart", "without_backdrop", "world_speed", "world_steps"]

@@ -35,6 +35,9 @@ Two groups seen at once in different places (further apart than the linking dist
 frames both cover) are two objects and are never joined, not even through a later fragment.
 Nor is a fragment joined to a group when it goes along with other clusters (in the same place,
 for most of its frames) that are mostly seen with that group elsewhere: it is on their object.
+Where an object's motion says nothing of where it comes back (it left the view, or was away for
+longer than ``lone_gap``), structures made of discretised colours are not enough: the two
+fragments' regions must also have the same colours (:mod:`trap_core.robust.end_colours`).
 """
 from __future__ import annotations
 
@@ -47,6 +50,7 @@ from trap_core.clustering import ClusterSummary, Trajectories, region_boxes_reac
 from trap_core.mining import MiningResult
 from trap_core.robust._kernels import companions_apart, cut_counts, group_distances, mean_pair_distances
 from trap_core.robust.camera import map_points
+from trap_core.robust.end_colours import MIN_MATCH, EndColours
 
 
 class BorderContacts(NamedTuple):
@@ -98,7 +102,7 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
                      at_border: BorderContacts | None = None,
                      weights: np.ndarray | None = None, transforms: np.ndarray | None = None,
                      adjacent_gap: int = 0, adjacent_reach: float = 0.0, lone_gap: int = 0,
-                     max_apart: float = np.inf) -> np.ndarray:
+                     max_apart: float = np.inf, colours: EndColours | None = None) -> np.ndarray:
     """Cluster labels (0..C'-1) after joining fragments of the same object.
 
     Candidate pairs and their costs are computed once on the fragments; they are then taken
@@ -122,7 +126,10 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     appears inside it (not from the border) more than ``lone_gap`` frames later only within
     ``max_apart`` of where its motion puts it. Neither are two
     fragments when one goes along with clusters (:func:`_going_along`) that are mostly seen
-    with the other's group and apart from it (:func:`_on_another_object`).
+    with the other's group and apart from it (:func:`_on_another_object`). With ``colours``
+    (each fragment's at its ends, :class:`EndColours`), a fragment continues one that surely
+    left the view with one that surely enters it, or one that ended more than ``lone_gap``
+    frames before it starts, only where their colours match (``MIN_MATCH``).
     """
     labels = np.unique(labels, return_inverse=True)[1]
     summary = summarise(labels, paths, np.ones(labels.size), n_frames)
@@ -156,6 +163,10 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     # out of the view an object's motion says little: what both fragments show goes first (to a tenth)
     shown = (np.zeros(costs.size) if at_border is None
              else np.where(leaves[earlier] & enters[later], -np.round(both_ways[earlier, later], 1), 0.0))
+    # out of the view, or away for long, only colours tell an object's return from a newcomer
+    by_colours = np.zeros(costs.size, dtype=bool) if colours is None else gap[earlier, later] > lone_gap
+    if colours is not None and at_border is not None:
+        by_colours |= leaves[earlier] & enters[later]
     group = np.arange(n_clusters)
     group_covered = summary.covered.copy()
     along = _going_along(summary, overlap, ALONG_FRAMES * max_overlap, max_apart / 4)
@@ -167,6 +178,8 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
         if both.size and _apart(summary, group == a, group == b, both) > max_apart:
             continue
         if _on_another_object(summary, group, group_covered, earlier[pair], later[pair], along, max_apart):
+            continue
+        if by_colours[pair] and colours.match(earlier[pair], later[pair]) < MIN_MATCH:
             continue
         group[group == b] = a
         group_covered[a] |= group_covered[b]

@@ -6,7 +6,7 @@ comes back), as the paper's do. Footage of traffic or passers-by is otherwise: a
 crosses and is gone, and a long video holds many such short tracks. These videos
 (``SceneConfig.passing``: each object enters once, at a time drawn over the video, and leaves
 for good) are 1000 to 4000 frames long, with 6 to 30 objects; each object is in view for 110 to
-730 frames, 4 to 46 % of its video. Prints the ``quality.py`` table and summary; graphs are cached as
+730 frames, 4 to 46 % of its video (the first seven; the last three were made later). Prints the ``quality.py`` table and summary; graphs are cached as
 ``quality.py`` caches them.
 Run: ``.venv/bin/python benchmarks/passing_objects.py [--pictures DIR] [-p name:=value]``
 """
@@ -37,6 +37,15 @@ PASSING = [
                                                          passing=True), "felzenszwalb"),
     ("distinct, mixed shapes, 30 objects, 4000 frames", dict(seed=7007, shape="mixed", objects=30, frames=4000,
                                                              passing=True), "felzenszwalb"),
+    # made in session 61, after the colours across exits (rejoin_colour_reach), which the 30 objects led to
+    ("distinct, car, 12 objects, 2500 frames, noise 1, road",
+     dict(seed=7101, objects=12, frames=2500, noise=1.0, background="road", passing=True), "felzenszwalb"),
+    ("distinct, person, 15 objects, 3000 frames, zoom 10 %, grass",
+     dict(seed=7102, shape="person", objects=15, frames=3000, zoom=0.1, background="grass", passing=True),
+     "felzenszwalb"),
+    ("distinct, mixed shapes, 10 objects, 2000 frames, illumination 10 %, JPEG",
+     dict(seed=7103, shape="mixed", objects=10, frames=2000, illumination=0.1, compressed="jpeg", passing=True),
+     "felzenszwalb"),
 ]
 
 

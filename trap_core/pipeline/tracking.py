@@ -17,11 +17,10 @@ from trap_core.pipeline.pattern_miner import PatternMiner
 from trap_core.pipeline.track_rules import Clusters, ClusterTracks, tracks_of_clusters
 from trap_core.rag import PlaneGraph, StackedGraphs
 from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, EndColours, alone_at_ends,
-                              border_contacts,
-                              border_share, camera_paths, camera_transforms, cluster_world_speed, hand_to_owners,
-                              held_share, moves_in_hops, pattern_sizes, rejoin_fragments, scene_patterns, shadowed,
-                              split_mixed, stays_with_scene, steady_patterns, whole_patterns_apart, without_backdrop,
-                              world_speed, world_steps)
+                              border_contacts, border_share, camera_paths, camera_transforms, cluster_world_speed,
+                              hand_to_owners, held_share, moves_in_hops, pattern_sizes, rejoin_fragments,
+                              scene_patterns, shadowed, split_mixed, stays_with_scene, steady_patterns,
+                              whole_patterns_apart, without_backdrop, world_speed, world_steps)
 
 
 @dataclass

@@ -127,9 +127,9 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     ``max_apart`` of where its motion puts it. Neither are two
     fragments when one goes along with clusters (:func:`_going_along`) that are mostly seen
     with the other's group and apart from it (:func:`_on_another_object`). With ``colours``
-    (each fragment's at its ends, :class:`EndColours`), a fragment continues one that surely
-    left the view with one that surely enters it, or one that ended more than ``lone_gap``
-    frames before it starts, only where their colours match (``MIN_MATCH``).
+    (each fragment's at its ends, :class:`EndColours`), two fragments across a sure exit and
+    entry, or more than ``lone_gap`` frames apart, are joined only where their colours match
+    (``MIN_MATCH``).
     """
     labels = np.unique(labels, return_inverse=True)[1]
     summary = summarise(labels, paths, np.ones(labels.size), n_frames)

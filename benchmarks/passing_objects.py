@@ -6,8 +6,8 @@ comes back), as the paper's do. Footage of traffic or passers-by is otherwise: a
 crosses and is gone, and a long video holds many such short tracks. These videos
 (``SceneConfig.passing``: each object enters once, at a time drawn over the video, and leaves
 for good) are 1000 to 4000 frames long, with 6 to 30 objects; each object is in view for 110 to
-730 frames, 4 to 46 % of its video (the first seven; the last three were made later). Prints the ``quality.py`` table and summary; graphs are cached as
-``quality.py`` caches them.
+730 frames, 4 to 46 % of its video (the first seven; the last three were made later). Prints the
+``quality.py`` table and summary; graphs are cached as ``quality.py`` caches them.
 Run: ``.venv/bin/python benchmarks/passing_objects.py [--pictures DIR] [-p name:=value]``
 """
 from __future__ import annotations

@@ -1,11 +1,13 @@
 """How long a track must be without a given number of objects: a share of the video, capped in frames."""
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
-from trap_core.clustering import MAX_TRACKS
+from trap_core.clustering import MAX_TRACKS, Track
 from trap_core.evaluation import boxes_by_frame, match_objects
 from trap_core.pipeline import ParameterError, TrapParams, synthetic_graphs, track
+from trap_core.pipeline.track_rules import _long_enough
 from trap_core.synthetic import SceneConfig
 
 
@@ -56,3 +58,13 @@ def test_more_objects_than_the_bound_of_a_short_video_pass_through_a_long_one() 
     assert len(tracks) > MAX_TRACKS
     found = match_objects([boxes_by_frame(t) for t in tracks], truth)
     assert sum(precision >= 0.9 and recall >= 0.9 for _, precision, recall in found) > MAX_TRACKS
+
+
+def test_a_track_the_rules_left_shorter_than_a_track_is_dropped() -> None:
+    """The track rules take frames from the selected clusters' tracks; one left with fewer frames
+    than a track must cover goes, and the ids of those kept run 1.. in their order."""
+    def lasting(frames: int, cluster: int) -> Track:
+        return Track(0, np.arange(frames), np.tile([10.0, 10.0, 20.0, 20.0], (frames, 1)), np.ones(frames), cluster)
+
+    kept = _long_enough([lasting(180, 7), lasting(179, 8), lasting(400, 9)], 180)
+    assert [(t.cluster, t.track_id) for t in kept] == [(7, 1), (9, 2)]

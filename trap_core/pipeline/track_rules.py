@@ -123,7 +123,20 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
         tracks = _returns_of_spares(tracks, clusters, tracks_of, n_frames, view, motion_window)
     if robust and params.groups:  # who is who is settled: placed boxes back on their track's path
         tracks = [through_groups(t, placed, 2 * params.tau) for t in tracks]
+    if robust and params.one_track and not params.n_objects:
+        tracks = _long_enough(tracks, params.track_frames(n_frames))
     return tracks
+
+
+def _long_enough(tracks: list[Track], min_frames: int) -> list[Track]:
+    """The tracks that still hold at least ``min_frames`` frames, ids renumbered 1.. in order.
+
+    A cluster is selected for covering a track's length, but the rules that compare tracks take
+    frames away (stretches that repeat another track's, boxes past an exit, pieces of another
+    size), and a track left shorter than a track must be is what was left of background or of
+    another object once those were taken (README, one track per object)."""
+    kept = [t for t in tracks if len(t) >= min_frames]
+    return [replace(t, track_id=i) for i, t in enumerate(kept, start=1)]
 
 
 def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: ClusterTracks, n_frames: int,

@@ -134,7 +134,7 @@ def _long_enough(tracks: list[Track], min_frames: int) -> list[Track]:
     A cluster is selected for covering a track's length, but the rules that compare tracks take
     frames away (stretches that repeat another track's, boxes past an exit, pieces of another
     size), and a track left shorter than a track must be is what was left of background or of
-    another object once those were taken (README, one track per object)."""
+    another object once those were taken (README, tracks left short)."""
     kept = [t for t in tracks if len(t) >= min_frames]
     return [replace(t, track_id=i) for i, t in enumerate(kept, start=1)]
 

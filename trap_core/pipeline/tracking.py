@@ -124,16 +124,16 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                 if rows.size:
                     labels[rows] = labels.max() + 1 + lifetime_clusters(patterns[rows], result, paths.subset(rows))[1]
         if robust and params.rejoin:
-            labels = rejoin_fragments(labels, paths, mined.st_pattern[patterns], n_frames,
+            fragments = np.unique(labels, return_inverse=True)[1]  # 0..C-1: the colours' and the rejoining's ids
+            colours = (EndColours(result, patterns, fragments, stacked, params.core_share, params.rejoin_colour_reach)
+                       if params.rejoin_colour_reach > 0 else None)
+            labels = rejoin_fragments(fragments, paths, mined.st_pattern[patterns], n_frames,
                                       params.rejoin_similarity, params.tau,
                                       border_contacts(result, patterns, width, height, lag=max(1, params.tau // 2),
                                                       reach=params.tau),
                                       mined.st_occurrences[patterns], transforms,
                                       adjacent_gap=max(1, params.tau // 10), adjacent_reach=params.eps / 4,
-                                      lone_gap=params.tau, max_apart=params.eps,
-                                      colours=EndColours(result, patterns, np.unique(labels, return_inverse=True)[1],
-                                                         stacked, params.core_share, params.rejoin_colour_reach)
-                                      if params.rejoin_colour_reach > 0 else None)
+                                      lone_gap=params.tau, max_apart=params.eps, colours=colours)
         return hierarchy, labels
 
     hierarchy, labels = cluster(clustered, mined, sub_paths)

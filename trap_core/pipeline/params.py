@@ -164,6 +164,10 @@ class TrapParams:
                                     "min_track_length asks (ours; 200 = 8 s at 25 Hz, more than the share asks of "
                                     "a video of up to 800 frames): objects that pass through the view are in it "
                                     "for seconds, not for a share of the video; 0 = min_track_length alone")
+    min_pass_frames: int = _p(100, "robust, one_track, n_objects = 0: frames: a track that enters the view through "
+                                   "its border and leaves through it (or is in view when the video starts or ends) "
+                                   "need only cover this many, if fewer than min_track_length and min_track_frames "
+                                   "ask (ours: an object that crosses the view in seconds is seen whole); 0 = off")
     separation: float = _p(40.0, "px (of the working size, max_side): a cluster this close to kept tracks in most "
                                  "of its frames is not a new object (ours)")
     threads: int = _p(2, "segmentation threads")
@@ -191,7 +195,8 @@ class TrapParams:
             (0 <= self.ignore_top < 1 and 0 <= self.length_tolerance <= 1,
              "ignore_top must be within [0, 1) and length_tolerance within [0, 1]"),
             (self.n_objects >= 0 and 0 <= self.min_track_length <= 1, "n_objects >= 0, min_track_length within [0, 1]"),
-            (self.min_track_frames >= 0, "min_track_frames must be >= 0"),
+            (self.min_track_frames >= 0 and self.min_pass_frames >= 0,
+             "min_track_frames and min_pass_frames must be >= 0"),
             (self.separation >= 0 and 1 <= self.threads <= 64, "separation >= 0 and threads within 1..64"),
             (self.size_jump == 0 or self.size_jump > 1, "size_jump must be 0 (off) or more than 1"),
             (self.link_reach >= 0, "link_reach must be >= 0"),
@@ -252,13 +257,29 @@ class TrapParams:
         frames = int(self.min_track_length * n_frames)
         return min(frames, self.min_track_frames) if self.min_track_frames else frames
 
+    def pass_frames(self, n_frames: int) -> int:
+        """Frames a track that passes through the view (in through its border, out through it)
+        must hold: ``min_pass_frames``, but never more than :meth:`track_frames`; that many where
+        the shorter tracks are not told apart (the paper's method, or no ``one_track``)."""
+        passing = self.method == "robust" and self.one_track and self.min_pass_frames > 0
+        return min(self.track_frames(n_frames), self.min_pass_frames) if passing else self.track_frames(n_frames)
+
+    def selection_length(self, n_frames: int) -> float:
+        """Share of a video of ``n_frames`` a cluster must cover to be selected when the number of
+        objects is not given: :meth:`track_length`, or :meth:`pass_frames` where that is fewer.
+        Tracks shorter than a track must be are kept once the track rules have run only if they
+        pass through the view (README, tracks that pass through)."""
+        if n_frames <= 0:
+            return self.track_length(n_frames)
+        return min(self.track_length(n_frames), self.pass_frames(n_frames) / n_frames)
+
     def max_tracks(self, n_frames: int) -> int:
         """At most how many tracks a video of ``n_frames`` gets when the number of objects is not
         given: ``MAX_TRACKS`` (a bound for videos whose tracks cover ``min_track_length`` of them)
-        as many times over as :meth:`track_length` asks less than that share. Where a track need
+        as many times over as :meth:`selection_length` asks less than that share. Where a track need
         cover only a tenth as many frames, ten times as many objects can pass through the video
         one after another (a chunk of traffic: 11 times, 220 tracks)."""
-        share = self.track_length(n_frames)
+        share = self.selection_length(n_frames)
         return MAX_TRACKS * max(1, round(self.min_track_length / share)) if share > 0 else MAX_TRACKS
 
     def as_dict(self) -> dict[str, Any]:

@@ -14,7 +14,7 @@ from functools import cached_property
 
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, Track, build_track, frame_cores, in_rows, twin_clusters
+from trap_core.clustering import ClusterSummary, Track, build_track, frame_cores, in_rows, reaches_border, twin_clusters
 from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, StackedGraphs
@@ -98,6 +98,11 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
     width, height = view
     summary, selected, moving = clusters.summary, clusters.selected, clusters.moving
     tracks = [tracks_of(cluster, track_id) for track_id, cluster in enumerate(selected, start=1)]
+    counted = robust and params.one_track and not params.n_objects  # the unsupervised count's tracks
+    need = params.track_frames(n_frames)
+    if counted:  # a cluster selected for pass_frames alone is a track only if it passes through the view
+        tracks = [replace(t, track_id=i) for i, t in enumerate(
+            (t for t in tracks if summary.length[t.cluster] >= need or _passes_through(t, n_frames, view)), start=1)]
     if robust and params.one_track:
         tracks = merge_duplicates(tracks, params.tau)
     if own_frames and not params.n_objects:
@@ -123,20 +128,44 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
         tracks = _returns_of_spares(tracks, clusters, tracks_of, n_frames, view, motion_window)
     if robust and params.groups:  # who is who is settled: placed boxes back on their track's path
         tracks = [through_groups(t, placed, 2 * params.tau) for t in tracks]
-    if robust and params.one_track and not params.n_objects:
-        tracks = _long_enough(tracks, params.track_frames(n_frames))
+    if counted:
+        tracks = _long_enough(tracks, need, params.pass_frames(n_frames), n_frames, view,
+                              [bool(summary.length[t.cluster] < need) for t in tracks])
     return tracks
 
 
-def _long_enough(tracks: list[Track], min_frames: int) -> list[Track]:
-    """The tracks that still hold at least ``min_frames`` frames, ids renumbered 1.. in order.
+def _long_enough(tracks: list[Track], min_frames: int, pass_frames: int, n_frames: int,
+                 view: tuple[int, int], short: Sequence[bool]) -> list[Track]:
+    """The tracks that still hold at least ``min_frames`` frames, and those of clusters that span
+    fewer (``short``, per track: selected for ``pass_frames``) that hold ``pass_frames`` and
+    pass through the view (:func:`_passes_through`); ids renumbered 1.. in order.
 
     A cluster is selected for covering a track's length, but the rules that compare tracks take
     frames away (stretches that repeat another track's, boxes past an exit, pieces of another
     size), and a track left shorter than a track must be is what was left of background or of
-    another object once those were taken (README, tracks left short)."""
-    kept = [t for t in tracks if len(t) >= min_frames]
+    another object once those were taken (README, tracks left short). A short cluster's track
+    must still pass through however many frames the rules gave it: other clusters lend frames
+    to any track."""
+    def kept_one(track: Track, selected_short: bool) -> bool:
+        if selected_short:
+            return len(track) >= pass_frames and _passes_through(track, n_frames, view)
+        return len(track) >= min_frames
+
+    kept = [t for t, selected_short in zip(tracks, short) if kept_one(t, selected_short)]
     return [replace(t, track_id=i) for i, t in enumerate(kept, start=1)]
+
+
+def _passes_through(track: Track, n_frames: int, view: tuple[int, int]) -> bool:
+    """Whether ``track`` enters the view through its border (or is in it when the video starts)
+    and leaves through it (or is in it when the video ends): an object that crosses the view in
+    fewer frames than a track must hold is seen whole so, where a piece of an object or of the
+    background starts or stops inside the view (README, tracks that pass through). An end box
+    within the track's usual size (its median) of the border counts: the patterns of an object
+    half out of view may hold only a sliver of it, or none."""
+    if not len(track):
+        return False
+    ends = reaches_border(track.boxes[[0, -1]], *view, margin=1.0, size=np.median(track.boxes[:, 2:], axis=0))
+    return bool((track.frames[0] == 0 or ends[0]) and (track.frames[-1] == n_frames - 1 or ends[1]))
 
 
 def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: ClusterTracks, n_frames: int,

@@ -259,8 +259,9 @@ class TrapParams:
 
     def pass_frames(self, n_frames: int) -> int:
         """Frames a track that passes through the view (in through its border, out through it)
-        must hold: ``min_pass_frames``, but never more than :meth:`track_frames`; that many where
-        the shorter tracks are not told apart (the paper's method, or no ``one_track``)."""
+        must hold: ``min_pass_frames``, but never more than :meth:`track_frames`. Without the
+        rules that tell a passing track from a piece (the paper's method, or no ``one_track``),
+        :meth:`track_frames` itself."""
         passing = self.method == "robust" and self.one_track and self.min_pass_frames > 0
         return min(self.track_frames(n_frames), self.min_pass_frames) if passing else self.track_frames(n_frames)
 

@@ -82,7 +82,8 @@ def test_a_track_the_rules_left_shorter_than_a_track_is_dropped() -> None:
     def lasting(frames: int, cluster: int) -> Track:
         return Track(0, np.arange(frames), np.tile([10.0, 10.0, 20.0, 20.0], (frames, 1)), np.ones(frames), cluster)
 
-    kept = _long_enough([lasting(180, 7), lasting(179, 8), lasting(400, 9)], 180, 180, 721, (320, 240), [False] * 3)
+    kept = _long_enough([lasting(180, 7), lasting(179, 8), lasting(400, 9)], 180, 180, 721, (320, 240),
+                        np.zeros(10, dtype=bool))
     assert [(t.cluster, t.track_id) for t in kept] == [(7, 1), (9, 2)]
 
 
@@ -98,12 +99,13 @@ def test_a_short_track_is_kept_where_it_passes_through_the_view() -> None:
               crossing(0, 120, 150.0, 295.0, 3),  # in view when the video starts
               crossing(601, 120, 5.0, 150.0, 4),  # in view when it ends (721 frames)
               crossing(300, 99, 10.0, 290.0, 5)]  # passes, but too short
-    kept = _long_enough(tracks, 180, 100, 721, (320, 240), [True] * 5)
+    short = np.ones(7, dtype=bool)  # every cluster selected for pass_frames
+    kept = _long_enough(tracks, 180, 100, 721, (320, 240), short)
     assert [(t.cluster, t.track_id) for t in kept] == [(1, 1), (3, 2), (4, 3)]
-    assert _long_enough(tracks, 180, 180, 721, (320, 240), [True] * 5) == []
+    assert _long_enough(tracks, 180, 180, 721, (320, 240), short) == []
     inside = crossing(300, 200, 60.0, 200.0, 6)  # long enough, but from a cluster selected as a passing one
-    assert [t.cluster for t in _long_enough([inside], 180, 100, 721, (320, 240), [False])] == [6]
-    assert _long_enough([inside], 180, 100, 721, (320, 240), [True]) == []
+    assert [t.cluster for t in _long_enough([inside], 180, 100, 721, (320, 240), ~short)] == [6]
+    assert _long_enough([inside], 180, 100, 721, (320, 240), short) == []
 
 
 def test_objects_in_view_for_fewer_frames_than_a_track_are_tracked_where_they_pass_through() -> None:

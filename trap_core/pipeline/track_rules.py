@@ -100,9 +100,9 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
     tracks = [tracks_of(cluster, track_id) for track_id, cluster in enumerate(selected, start=1)]
     counted = robust and params.one_track and not params.n_objects  # the unsupervised count's tracks
     need = params.track_frames(n_frames)
-    if counted:  # a cluster selected for pass_frames alone is a track only if it passes through the view
-        tracks = [replace(t, track_id=i) for i, t in enumerate(
-            (t for t in tracks if summary.length[t.cluster] >= need or _passes_through(t, n_frames, view)), start=1)]
+    short = summary.length < need  # per cluster: selected (if at all) for pass_frames alone
+    if counted:  # such a cluster is a track only if it passes through the view, before any rule reads it
+        tracks = _long_enough(tracks, 0, 0, n_frames, view, short)
     if robust and params.one_track:
         tracks = merge_duplicates(tracks, params.tau)
     if own_frames and not params.n_objects:
@@ -129,15 +129,14 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
     if robust and params.groups:  # who is who is settled: placed boxes back on their track's path
         tracks = [through_groups(t, placed, 2 * params.tau) for t in tracks]
     if counted:
-        tracks = _long_enough(tracks, need, params.pass_frames(n_frames), n_frames, view,
-                              [bool(summary.length[t.cluster] < need) for t in tracks])
+        tracks = _long_enough(tracks, need, params.pass_frames(n_frames), n_frames, view, short)
     return tracks
 
 
 def _long_enough(tracks: list[Track], min_frames: int, pass_frames: int, n_frames: int,
-                 view: tuple[int, int], short: Sequence[bool]) -> list[Track]:
+                 view: tuple[int, int], short: np.ndarray) -> list[Track]:
     """The tracks that still hold at least ``min_frames`` frames, and those of clusters that span
-    fewer (``short``, per track: selected for ``pass_frames``) that hold ``pass_frames`` and
+    fewer (``short``, per cluster: selected for ``pass_frames``) that hold ``pass_frames`` and
     pass through the view (:func:`_passes_through`); ids renumbered 1.. in order.
 
     A cluster is selected for covering a track's length, but the rules that compare tracks take
@@ -146,12 +145,12 @@ def _long_enough(tracks: list[Track], min_frames: int, pass_frames: int, n_frame
     another object once those were taken (README, tracks left short). A short cluster's track
     must still pass through however many frames the rules gave it: other clusters lend frames
     to any track."""
-    def kept_one(track: Track, selected_short: bool) -> bool:
-        if selected_short:
+    def kept_one(track: Track) -> bool:
+        if short[track.cluster]:
             return len(track) >= pass_frames and _passes_through(track, n_frames, view)
         return len(track) >= min_frames
 
-    kept = [t for t, selected_short in zip(tracks, short) if kept_one(t, selected_short)]
+    kept = [t for t in tracks if kept_one(t)]
     return [replace(t, track_id=i) for i, t in enumerate(kept, start=1)]
 
 

@@ -201,6 +201,8 @@ def test_bad_parameters() -> None:
         MiningParams(freq_min=0)
     with pytest.raises(MiningError, match="freq_st_cut"):
         MiningParams(freq_st_cut=0)
+    with pytest.raises(MiningError, match="threads"):
+        MiningParams(threads=0)
 
 
 def _node_sets(graphs, result) -> set[frozenset]:
@@ -244,6 +246,19 @@ def test_compiled_miner_equals_reference_on_a_synthetic_video() -> None:
     np.testing.assert_allclose(compiled.occ_position[row], graph.centroid[nodes].mean(axis=0))
     np.testing.assert_array_equal(compiled.occ_box[row], [graph.bbox[nodes, 0].min(), graph.bbox[nodes, 1].min(),
                                                           graph.bbox[nodes, 2].max(), graph.bbox[nodes, 3].max()])
+
+
+def test_threads_enumerate_frames_in_order_to_the_same_result() -> None:
+    rng = np.random.default_rng(40)
+    graphs = [_random_graph(rng, size=12) for _ in range(25)]
+    params = MiningParams(eps=8.0, tau=3, freq_st_min=2, freq_min=3, max_faces=3)
+    done: list[int] = []
+    one = mine(graphs, params)
+    several = mine(graphs, dataclasses.replace(params, threads=3), on_frame=done.append)
+    assert done == list(range(1, 26))  # progress in frame order, every frame once
+    assert one.n_st > 0
+    for name in one.__dataclass_fields__:
+        np.testing.assert_array_equal(getattr(several, name), getattr(one, name), err_msg=name)
 
 
 def test_filtering_a_result_equals_mining_with_higher_thresholds() -> None:

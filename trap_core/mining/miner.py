@@ -16,7 +16,9 @@ has probability ~1e-11).
 """
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections import deque
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -32,6 +34,43 @@ def _frame_singles(graph: PlaneGraph) -> tuple[np.ndarray, np.ndarray]:
     hashes = single_face_hashes(graph.he_origin, graph.he_twin, graph.he_next, graph.face_of,
                                 graph.face_half_edges, graph.face_offsets, graph.label, inner)
     return inner, hashes
+
+
+def _face_sets(graph: PlaneGraph, inner: np.ndarray, hashes: np.ndarray, frequent_faces: np.ndarray,
+               max_faces: int) -> tuple[np.ndarray, np.ndarray]:
+    """Code hashes and faces (-1 padded) of every connected set of at most ``max_faces`` of
+    ``graph``'s inner faces that are frequent alone (``hashes``: each face's alone)."""
+    allowed = inner & np.isin(hashes, frequent_faces)
+    adj_offsets, adj_targets = face_adjacency(graph.he_twin, graph.face_of, graph.face_half_edges, graph.face_offsets,
+                                              allowed)
+    set_hashes, sets = enumerate_face_sets(max_faces, allowed, adj_offsets, adj_targets, graph.he_origin,
+                                           graph.he_twin, graph.he_next, graph.face_of, graph.face_half_edges,
+                                           graph.face_offsets, graph.label, hashes)
+    return set_hashes, sets.astype(np.int32)
+
+
+def _frequent_occurrences(graph: PlaneGraph, set_hashes: np.ndarray, sets: np.ndarray, pattern_hash: np.ndarray
+                          ) -> tuple[np.ndarray, ...]:
+    """The face sets of one frame that are occurrences of frequent patterns (``pattern_hash``):
+    their hashes, faces, positions, region boxes and node boxes."""
+    kept = np.isin(set_hashes, pattern_hash)
+    sets = sets[kept]
+    position, box, node_box = occurrence_geometry(sets, graph.he_origin, graph.face_half_edges, graph.face_offsets,
+                                                  graph.centroid, graph.bbox, np.zeros(0, dtype=np.bool_))
+    return set_hashes[kept], sets, position, box.astype(np.float32), node_box.astype(np.float32)
+
+
+def _in_order(pool: ThreadPoolExecutor, work: Callable, arguments: Iterable[tuple], threads: int) -> Iterator:
+    """``work(*a)`` for each ``a`` of ``arguments``, in order, ``threads`` at once on ``pool`` (the
+    kernels release the GIL). At most ``2 * threads`` results wait ahead of the caller: progress
+    is reported as frames finish, and arguments are not all held at once."""
+    pending: deque = deque()
+    for args in arguments:
+        pending.append(pool.submit(work, *args))
+        if len(pending) >= 2 * threads:
+            yield pending.popleft().result()
+    while pending:
+        yield pending.popleft().result()
 
 
 def _frequent(per_frame_hashes: list[np.ndarray], minimum: int) -> tuple[np.ndarray, np.ndarray]:
@@ -52,7 +91,8 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
     graphs : sequence of PlaneGraph
         Frame ``first_frame + i`` is ``graphs[i]``.
     params : MiningParams
-        ``eps``, ``tau``, ``freq_min``, ``freq_st_min``, ``max_faces``.
+        ``eps``, ``tau``, ``freq_min``, ``freq_st_min``, ``max_faces``; ``threads`` frames are
+        enumerated at once (the result is the same for any number).
     on_frame : callable, optional
         Called with the number of frames enumerated so far (progress).
     open_ends : (int, int)
@@ -64,34 +104,28 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
     -------
     MiningResult
     """
-    singles = [_frame_singles(graph) for graph in graphs]
-    frequent_faces, _ = _frequent([np.unique(h[inner]) for inner, h in singles], params.frequency)
-    chunks = []
-    for index, (graph, (inner, hashes)) in enumerate(zip(graphs, singles)):
-        allowed = inner & np.isin(hashes, frequent_faces)
-        adj_offsets, adj_targets = face_adjacency(graph.he_twin, graph.face_of, graph.face_half_edges,
-                                                  graph.face_offsets, allowed)
-        set_hashes, sets = enumerate_face_sets(params.max_faces, allowed, adj_offsets, adj_targets,
-                                               graph.he_origin, graph.he_twin, graph.he_next, graph.face_of,
-                                               graph.face_half_edges, graph.face_offsets, graph.label, hashes)
-        chunks.append((set_hashes, sets.astype(np.int32)))
-        if on_frame:
-            on_frame(index + 1)
-    pattern_hash, pattern_frequency = _frequent([np.unique(h) for h, _ in chunks], params.frequency)
-    frames_list, hashes_list, faces_list, position_list, box_list, node_box_list = [], [], [], [], [], []
-    for index, (set_hashes, sets) in enumerate(chunks):
-        kept = np.isin(set_hashes, pattern_hash)
-        sets = sets[kept]
-        position, box, node_box = occurrence_geometry(sets, graphs[index].he_origin, graphs[index].face_half_edges,
-                                                      graphs[index].face_offsets, graphs[index].centroid,
-                                                      graphs[index].bbox, np.zeros(0, dtype=np.bool_))
-        frames_list.append(np.full(sets.shape[0], index, dtype=np.int64))
-        hashes_list.append(set_hashes[kept])
-        faces_list.append(sets)
-        position_list.append(position)
-        box_list.append(box.astype(np.float32))
-        node_box_list.append(node_box.astype(np.float32))
-        chunks[index] = None  # the unfiltered face sets are the largest temporary: free them as we go
+    with ThreadPoolExecutor(params.threads, thread_name_prefix="trap-mine") as pool:
+        singles = list(_in_order(pool, _frame_singles, ((graph,) for graph in graphs), params.threads))
+        frequent_faces, _ = _frequent([np.unique(h[inner]) for inner, h in singles], params.frequency)
+        chunks = []
+        for chunk in _in_order(pool, _face_sets, ((graph, *single, frequent_faces, params.max_faces)
+                                                  for graph, single in zip(graphs, singles)), params.threads):
+            chunks.append(chunk)
+            if on_frame:
+                on_frame(len(chunks))
+        pattern_hash, pattern_frequency = _frequent([np.unique(h) for h, _ in chunks], params.frequency)
+
+        def frame_sets() -> Iterator[tuple]:
+            """Each frame's face sets, let go as they are handed out: the unfiltered face sets
+            are the largest temporary."""
+            for index, graph in enumerate(graphs):
+                yield graph, *chunks[index], pattern_hash
+                chunks[index] = None
+
+        kept = list(_in_order(pool, _frequent_occurrences, frame_sets(), params.threads))
+    hashes_list, faces_list, position_list, box_list, node_box_list = ([row[k] for row in kept] for k in range(5))
+    frames_list = [np.full(sets.shape[0], index, dtype=np.int64) for index, sets in enumerate(faces_list)]
+    del kept
     frames = np.concatenate(frames_list) if frames_list else np.empty(0, np.int64)
     hashes = np.concatenate(hashes_list) if hashes_list else np.empty(0, np.int64)
     occ_faces = np.concatenate(faces_list) if faces_list else np.empty((0, params.max_faces), np.int32)

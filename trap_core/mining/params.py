@@ -22,6 +22,7 @@ class MiningParams:
     linking: str = "graph"  # "graph": components of the occurrence graph (paper); "assignment": one path per object (ours)
     reach: float = 0.0  # assignment: steps of a chain at most this times its last occurrence's size (x sqrt(gap)); 0 = eps only
     freq_st_cut: int | None = None  # frames enough for a pattern seen within tau of the first or last frame (ours); None = freq_st_min
+    threads: int = 1  # frames whose face sets are enumerated at once (the compiled kernels release the GIL)
 
     def __post_init__(self) -> None:
         if not (np.isfinite(self.eps) and self.eps > 0):
@@ -34,6 +35,8 @@ class MiningParams:
             raise MiningError(f"reach must be a number >= 0, not {self.reach}")
         if self.freq_st_cut is not None and self.freq_st_cut < 1:
             raise MiningError(f"freq_st_cut must be at least 1, not {self.freq_st_cut}")
+        if self.threads < 1:
+            raise MiningError(f"threads must be at least 1, not {self.threads}")
         if self.freq_min is not None and self.freq_min < 1:
             raise MiningError(f"freq_min must be at least 1, not {self.freq_min}")
 

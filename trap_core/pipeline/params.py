@@ -170,7 +170,7 @@ class TrapParams:
                                    "ask (ours: an object that crosses the view in seconds is seen whole); 0 = off")
     separation: float = _p(40.0, "px (of the working size, max_side): a cluster this close to kept tracks in most "
                                  "of its frames is not a new object (ours)")
-    threads: int = _p(2, "segmentation threads")
+    threads: int = _p(2, "segmentation and mining threads: frames segmented, or enumerated, at once")
 
     def __post_init__(self) -> None:
         checks = [
@@ -294,7 +294,8 @@ class TrapParams:
                             freq_min=frames(self.freq_min) if self.freq_min else None, max_faces=self.max_faces,
                             linking="assignment" if self.method == "robust" and self.one_path else "graph",
                             reach=self.link_reach,
-                            freq_st_cut=self.freq_st_cut if self.method == "robust" and self.freq_st_cut else None)
+                            freq_st_cut=self.freq_st_cut if self.method == "robust" and self.freq_st_cut else None,
+                            threads=self.threads)
 
     @classmethod
     def descriptions(cls) -> dict[str, str]:

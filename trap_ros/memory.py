@@ -1,7 +1,7 @@
 """Fewer malloc arenas: the memory a long bag's run needs, not what its threads fragment.
 
 glibc gives each thread that allocates its own arena (up to 8 per core), and memory freed in
-one arena is not reused by another. The spinning, reader and segmentation threads all
+one arena is not reused by another. The spinning, reader, segmentation and mining threads all
 allocate numpy arrays, so a 5600-frame ``process_bag`` run peaked at 2.75 GB RSS; with two
 arenas it peaks at 1.9 GB at the same speed (measured with ``benchmarks/end_to_end.py``'s
 RSS sampling). ``MALLOC_ARENA_MAX`` in the environment does the same but must be set before

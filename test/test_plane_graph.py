@@ -340,6 +340,23 @@ def test_every_frame_of_a_stream_is_cut_with_the_k_fitted_to_its_first(textured_
     assert reported == []  # within max_regions and not too few: nothing to tell
 
 
+def test_a_stream_that_fails_gives_the_graphs_before_the_failure_then_raises(textured_frames: list) -> None:
+    from trap_core.pipeline import TrapParams, frame_graph, graphs_of
+    textured = textured_frames[0]
+    params = TrapParams(threads=2)
+
+    def frames():
+        for _ in range(7):  # more than the 2 x threads frames in flight
+            yield textured
+        raise OSError("corrupt message")
+
+    graphs = []
+    with pytest.raises(OSError, match="corrupt message"):
+        for graph in graphs_of(frames(), params, image_steps=False):
+            graphs.append(graph)
+    assert [g.n_nodes for g in graphs] == [frame_graph(textured, params).n_nodes] * 7
+
+
 def test_a_first_frame_of_few_felzenszwalb_regions_gets_a_warning(textured_frames: list) -> None:
     from trap_core.pipeline import TrapParams, first_frame_setup, frame_graph
     smooth = np.zeros((120, 160, 3), np.uint8)

@@ -16,8 +16,7 @@ has probability ~1e-11).
 """
 from __future__ import annotations
 
-from collections import deque
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -26,6 +25,7 @@ from trap_core.mining._kernels import (assign_occurrences, enumerate_face_sets, 
                                        link_occurrences, occurrence_geometry, single_face_hashes)
 from trap_core.mining.params import MiningParams
 from trap_core.mining.result import MiningResult
+from trap_core.ordered import in_order
 from trap_core.rag import PlaneGraph
 
 
@@ -60,19 +60,6 @@ def _frequent_occurrences(graph: PlaneGraph, set_hashes: np.ndarray, sets: np.nd
     return set_hashes[kept], sets, position, box.astype(np.float32), node_box.astype(np.float32)
 
 
-def _in_order(pool: ThreadPoolExecutor, work: Callable, arguments: Iterable[tuple], threads: int) -> Iterator:
-    """``work(*a)`` for each ``a`` of ``arguments``, in order, ``threads`` at once on ``pool`` (the
-    kernels release the GIL). At most ``2 * threads`` results wait ahead of the caller: progress
-    is reported as frames finish, and arguments are not all held at once."""
-    pending: deque = deque()
-    for args in arguments:
-        pending.append(pool.submit(work, *args))
-        if len(pending) >= 2 * threads:
-            yield pending.popleft().result()
-    while pending:
-        yield pending.popleft().result()
-
-
 def _frequent(per_frame_hashes: list[np.ndarray], minimum: int) -> tuple[np.ndarray, np.ndarray]:
     """Hashes occurring in at least ``minimum`` distinct frames, and their frame counts
     (``per_frame_hashes[i]``: the hashes seen in frame i, each once)."""
@@ -105,10 +92,10 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
     MiningResult
     """
     with ThreadPoolExecutor(params.threads, thread_name_prefix="trap-mine") as pool:
-        singles = list(_in_order(pool, _frame_singles, ((graph,) for graph in graphs), params.threads))
+        singles = list(in_order(pool, _frame_singles, ((graph,) for graph in graphs), params.threads))
         frequent_faces, _ = _frequent([np.unique(h[inner]) for inner, h in singles], params.frequency)
         chunks = []
-        for chunk in _in_order(pool, _face_sets, ((graph, *single, frequent_faces, params.max_faces)
+        for chunk in in_order(pool, _face_sets, ((graph, *single, frequent_faces, params.max_faces)
                                                   for graph, single in zip(graphs, singles)), params.threads):
             chunks.append(chunk)
             if on_frame:
@@ -122,7 +109,7 @@ def mine(graphs: Sequence[PlaneGraph], params: MiningParams, first_frame: int = 
                 yield graph, *chunks[index], pattern_hash
                 chunks[index] = None
 
-        kept = list(_in_order(pool, _frequent_occurrences, frame_sets(), params.threads))
+        kept = list(in_order(pool, _frequent_occurrences, frame_sets(), params.threads))
     hashes_list, faces_list, position_list, box_list, node_box_list = ([row[k] for row in kept] for k in range(5))
     frames_list = [np.full(sets.shape[0], index, dtype=np.int64) for index, sets in enumerate(faces_list)]
     del kept

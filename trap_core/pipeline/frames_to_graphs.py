@@ -7,14 +7,14 @@ are in flight (memory stays flat).
 from __future__ import annotations
 
 import dataclasses
-from collections import deque
 from collections.abc import Callable, Iterable, Iterator
-from concurrent.futures import Future, ThreadPoolExecutor
+from concurrent.futures import ThreadPoolExecutor
 
 import cv2
 import numpy as np
 
 from trap_core.bagio import compress_image, decode_compressed, decode_image, encode_image
+from trap_core.ordered import in_order
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, build_plane_graph
 from trap_core.robust.image_steps import image_step
@@ -188,32 +188,33 @@ def graphs_of(frames: Iterable[np.ndarray], params: TrapParams,
     it are still given, then the error is raised."""
     if image_steps is None:
         image_steps = params.reads_image_steps
-    failure: Exception | None = None
-    with ThreadPoolExecutor(params.threads, thread_name_prefix="trap-graph") as pool:
-        pending: deque[Future] = deque()
+    failure: list[Exception] = []  # raised once the frames in flight are made
+
+    def calls() -> Iterator[tuple]:
+        """``frame_graph``'s arguments for each frame, the first frame's setup made on it."""
+        nonlocal params
+        previous = None
         source = iter(frames)
         first = True
-        previous = None
         while True:
             try:
                 rgb = next(source)
             except StopIteration:
-                break
-            except Exception as error:  # raised once the frames in flight are made
-                failure = error
-                break
+                return
+            except Exception as error:
+                failure.append(error)
+                return
             if first:
                 first, (params, notes) = False, first_frame_setup(rgb, params)
                 if told is not None and notes:
                     told(params, notes)
-            pending.append(pool.submit(frame_graph, rgb, params, previous))
+            yield rgb, params, previous
             previous = rgb if image_steps else None
-            if len(pending) >= 2 * params.threads:
-                yield pending.popleft().result()
-        while pending:
-            yield pending.popleft().result()
-    if failure is not None:
-        raise failure
+
+    with ThreadPoolExecutor(params.threads, thread_name_prefix="trap-graph") as pool:
+        yield from in_order(pool, frame_graph, calls(), params.threads)
+    if failure:
+        raise failure[0]
 
 
 def synthetic_graphs(config: SceneConfig, params: TrapParams, compressed: str | None = None, encoding: str = "rgb8",

@@ -1490,6 +1490,26 @@ def test_a_stretch_on_a_lookalike_is_mended_by_a_cluster_that_held_the_object_el
     np.testing.assert_allclose(kept[1].boxes, tracks[1].boxes)
 
 
+def test_where_both_tracks_are_mended_the_one_whose_menders_held_its_object_far_longer_is() -> None:
+    """As above, with a second candidate that mends track 1: on the passing one in the stretch,
+    then on the bounced one for 15 frames. The passing one's cluster held track 2's object for 50
+    frames beside the stretch, more than three times as long, and goes on as track 2's object
+    moves: track 2 is mended. With 20 frames (not three times less) the two stay tied, and with
+    the passing one's cluster 100 px off that motion in the stretch (a jump) nothing is mended."""
+    from trap_core.robust import mend_shared_stretches
+    bounced, passing = _bounce_and_pass()
+    frames = np.arange(100)
+    tracks = [_as_track(1, frames, bounced), _as_track(2, frames, np.vstack([bounced[:50], passing[50:]]))]
+    jumped = passing + np.where(frames[:, None] < 50, [0.0, 100.0, 0.0, 0.0], 0.0)
+    for beside, lender, mended in ((15, passing, True), (20, passing, False), (15, jumped, False)):
+        hopping = np.vstack([passing[:50], bounced[50:50 + beside]])
+        candidates = [_as_track(0, frames, lender), _as_track(0, frames[:50 + beside], hopping)]
+        out = mend_shared_stretches(tracks, _cover(100, *candidates), np.arange(2), 100, 25,
+                                    lambda c: candidates[c])
+        np.testing.assert_allclose(out[0].boxes, bounced)
+        np.testing.assert_allclose(out[1].boxes, lender if mended else tracks[1].boxes)
+
+
 def test_a_twin_lends_its_track_only_frames_the_track_lacks_at_the_usual_size_and_no_other_tracks() -> None:
     """The kept track holds frames 0-59 of a look-alike; its twin holds the same object over
     frames 0-99, but with the pair's box (twice as wide) in 90-99, and on the other look-alike

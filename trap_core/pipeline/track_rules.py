@@ -179,7 +179,7 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
     alike = _lookalikes(tracks, clusters, tracks_of.graphs)
     tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
     spare = _spare_clusters(clusters, params.tau)
-    tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, tracks_of)
+    tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, tracks_of, window=motion_window)
     tracks = drop_shared_stretches(tracks, n_frames, params.tau, motion_window)
     tracks = drop_repeated_pieces(tracks, motion_window, min_frames=params.tau)
     tracks = [t for t in (drop_stray_pieces(t, n_frames, motion_window, params.tau) for t in tracks) if len(t)]

@@ -35,6 +35,10 @@ from trap_core.robust.motion import straight_line
 # An IoU above zero: boxes that overlap at all. Where look-alikes meet, a box placed on one of
 # them can end up shifted off it, beside the other track's box rather than on it.
 ANY_OVERLAP = float(np.finfo(float).tiny)
+# Where clusters mend both tracks of a stretch, the track whose menders held its object this many
+# times longer beside the stretch (summed, :func:`_held_beside`) is mended: look-alikes that meet
+# send some clusters on with the other object, but most go on with their own.
+SUPPORT_RATIO = 3.0
 
 
 def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates: np.ndarray, n_frames: int,
@@ -235,7 +239,7 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
 
 def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, candidates: np.ndarray, n_frames: int,
                           min_frames: int, build: Callable[[int], Track], min_iou: float = 0.5,
-                          min_inside: float = 0.9, min_share: float = 0.8) -> list[Track]:
+                          min_inside: float = 0.9, min_share: float = 0.8, window: int = 12) -> list[Track]:
     """Tracks whose stretch on another track's object is replaced by the boxes of a cluster of
     ``candidates`` that held their own object meanwhile.
 
@@ -248,7 +252,11 @@ def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, cand
     touching the object), and in the stretch it has boxes that repeat no track's in at least
     half its frames: the object was elsewhere, where nothing tracked it. The track's boxes in
     the stretch are replaced by those, and the other track keeps the stretch. Where candidates mend both
-    tracks, neither is changed: nothing tells which went on with the object.
+    tracks, the one whose menders held its object beside the stretch ``SUPPORT_RATIO`` times longer
+    (frames summed over them, :func:`_held_beside`) is mended, if one of them goes on where the
+    track's motion puts its object (within the median side of its boxes, :func:`_motion_error`
+    over ``window`` frames), and otherwise neither: where look-alikes touch, some of their
+    clusters go on with the other object, but most go on with their own, as it moved.
     """
     out = list(tracks)
     boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
@@ -265,9 +273,14 @@ def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, cand
             for start, end in shared_stretches(boxes[a], boxes[b], min_frames, min_iou, min_inside):
                 menders = {slot: _menders(boxes, slot, (start, end), summary, candidates, min_frames, boxes_of,
                                           (min_iou, min_inside, min_share)) for slot in (a, b)}
-                if bool(menders[a]) == bool(menders[b]):
-                    continue
-                slot = a if menders[a] else b
+                held = {slot: sum(_held_beside(boxes[slot], (start, end), summary, cluster)
+                                  for cluster in menders[slot]) for slot in (a, b)}
+                if not max(held.values()) or max(held.values()) < SUPPORT_RATIO * min(held.values()):
+                    continue  # neither is mended, or both about as much
+                slot = a if held[a] > held[b] else b
+                if min(held.values()) and (_motion_error(out[slot], (start, end), summary, menders[slot], window)
+                                           > np.median(out[slot].boxes[:, 2:4])):
+                    continue  # both are: the weightier menders must also go on as the track's object moved
                 cluster, frames = max(menders[slot].items(), key=lambda item: item[1].size)
                 lent = in_rows(built[cluster][0], np.isin(built[cluster][0].frames, frames))
                 kept = in_rows(out[slot], (out[slot].frames < start) | (out[slot].frames > end))
@@ -312,6 +325,37 @@ def _menders(boxes: np.ndarray, slot: int, stretch_ends: tuple[int, int], summar
         if inside.size >= stretch.size / 2:
             menders[cluster] = inside
     return menders
+
+
+def _held_beside(own: np.ndarray, stretch_ends: tuple[int, int], summary: ClusterSummary, cluster: int) -> int:
+    """Frames outside the stretch (first and last frame ``stretch_ends``) where ``cluster``'s mean
+    position lies in the track's box (``own``, one per video frame, NaN where none): how long the
+    cluster held the track's object, the weight of its word on where that object went."""
+    start, end = stretch_ends
+    frames = np.flatnonzero(summary.covered[cluster])
+    frames = frames[(frames < start) | (frames > end)]
+    return int(np.count_nonzero(_within(summary.paths.at(cluster, frames), own[frames])))
+
+
+def _motion_error(track: Track, stretch_ends: tuple[int, int], summary: ClusterSummary,
+                  menders: dict[int, np.ndarray], window: int) -> float:
+    """Least, over the ``menders`` (each with the stretch frames it lends), of the median distance
+    from its positions in the first (last) ``window`` of those frames to where the track's motion
+    before the stretch (after it, read back: a straight line through its ``window`` box centres
+    beside it) puts them; inf where the track has no such motion on either side."""
+    start, end = stretch_ends
+    lines = [(_motion_at(track, start - 1, window), slice(None, window)) if start > track.frames[0] else (None, None),
+             (_line_through(track, np.arange(end + 1, end + 1 + window)), slice(-window, None))
+             if end < track.frames[-1] else (None, None)]
+    errors = [np.inf]
+    for cluster, frames in menders.items():
+        for line, near in lines:
+            if line is not None:
+                velocity, origin = line
+                lent = frames[near]
+                errors.append(float(np.median(np.linalg.norm(summary.paths.at(cluster, lent)
+                                                             - (origin + velocity * lent[:, None]), axis=1))))
+    return min(errors)
 
 
 def _within(points: np.ndarray, boxes: np.ndarray) -> np.ndarray:

@@ -273,14 +273,18 @@ def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, cand
             for start, end in shared_stretches(boxes[a], boxes[b], min_frames, min_iou, min_inside):
                 menders = {slot: _menders(boxes, slot, (start, end), summary, candidates, min_frames, boxes_of,
                                           (min_iou, min_inside, min_share)) for slot in (a, b)}
-                held = {slot: sum(_held_beside(boxes[slot], (start, end), summary, cluster)
-                                  for cluster in menders[slot]) for slot in (a, b)}
-                if not max(held.values()) or max(held.values()) < SUPPORT_RATIO * min(held.values()):
-                    continue  # neither is mended, or both about as much
-                slot = a if held[a] > held[b] else b
-                if min(held.values()) and (_motion_error(out[slot], (start, end), summary, menders[slot], window)
-                                           > np.median(out[slot].boxes[:, 2:4])):
-                    continue  # both are: the weightier menders must also go on as the track's object moved
+                if not (menders[a] or menders[b]):
+                    continue
+                slot = a if menders[a] else b
+                if menders[a] and menders[b]:  # the weightier menders, if they go on as the object moved
+                    held = {slot: sum(_held_beside(boxes[slot], (start, end), summary, cluster)
+                                      for cluster in menders[slot]) for slot in (a, b)}
+                    if max(held.values()) < SUPPORT_RATIO * min(held.values()):
+                        continue
+                    slot = a if held[a] > held[b] else b
+                    if (_motion_error(out[slot], (start, end), summary, menders[slot], window)
+                            > np.median(out[slot].boxes[:, 2:4])):
+                        continue
                 cluster, frames = max(menders[slot].items(), key=lambda item: item[1].size)
                 lent = in_rows(built[cluster][0], np.isin(built[cluster][0].frames, frames))
                 kept = in_rows(out[slot], (out[slot].frames < start) | (out[slot].frames > end))
@@ -344,17 +348,17 @@ def _motion_error(track: Track, stretch_ends: tuple[int, int], summary: ClusterS
     before the stretch (after it, read back: a straight line through its ``window`` box centres
     beside it) puts them; inf where the track has no such motion on either side."""
     start, end = stretch_ends
-    lines = [(_motion_at(track, start - 1, window), slice(None, window)) if start > track.frames[0] else (None, None),
-             (_line_through(track, np.arange(end + 1, end + 1 + window)), slice(-window, None))
-             if end < track.frames[-1] else (None, None)]
+    lines = []  # (velocity and origin of a motion beside the stretch, the lent frames it predicts)
+    if start > track.frames[0]:
+        lines.append((_motion_at(track, start - 1, window), slice(None, window)))
+    if end < track.frames[-1]:
+        lines.append((_line_through(track, np.arange(end + 1, end + 1 + window)), slice(-window, None)))
     errors = [np.inf]
     for cluster, frames in menders.items():
-        for line, near in lines:
-            if line is not None:
-                velocity, origin = line
-                lent = frames[near]
-                errors.append(float(np.median(np.linalg.norm(summary.paths.at(cluster, lent)
-                                                             - (origin + velocity * lent[:, None]), axis=1))))
+        for (velocity, origin), near in ((line, near) for line, near in lines if line is not None):
+            lent = frames[near]
+            errors.append(float(np.median(np.linalg.norm(summary.paths.at(cluster, lent)
+                                                         - (origin + velocity * lent[:, None]), axis=1))))
     return min(errors)
 
 

@@ -33,7 +33,8 @@ def _sorted_edges(image: np.ndarray, connectivity: int) -> tuple[np.ndarray, np.
     counting sort on weights quantised to 1/16 unit, O(n), stable: edges of one bin keep
     their raster order. Each edge's bin is kept from the pass that weighs it (-1: the pixel has
     no such neighbour), and edges are weighed pixel by pixel, all directions at once, so every
-    pass runs through memory in order: 15 % faster than a pass per direction.
+    pass runs through memory in order (the kernel 10-12 % faster at 640x480 than with a pass per
+    direction).
     """
     height, width, channels = image.shape
     n_dirs = 2 if connectivity == 4 else 4

@@ -229,6 +229,24 @@ def test_rejoin_never_joins_fragments_seen_at_once_in_different_places() -> None
     assert np.unique(rejoin_fragments(np.arange(2), paths, st_pattern[:2], 100, max_apart=40.0)).size == 1
 
 
+def _moving_right(start: int, frames: int, y: float) -> np.ndarray:
+    """Points of a path at 2 px a frame along the row ``y``, from frame ``start`` on."""
+    return np.column_stack([np.arange(start, start + frames) * 2.0, np.full(frames, y)])
+
+
+def test_rejoin_never_strings_a_fragment_to_one_it_could_not_have_become() -> None:
+    """A (frames 0-49, y 10) ends; B starts 5 frames later 290 px away and C (from frame 150)
+    continues B exactly. Joined B-C, A could join either, and the group would hold A, then B:
+    a jump of 290 px in 5 frames at 2 px a frame. Without B, A reaches C in 100 frames."""
+    a, b, c = (0, _moving_right(0, 50, 10)), (55, _moving_right(55, 45, 300)), (150, _moving_right(150, 31, 300))
+    same_structures = np.full(3, 5)
+    assert np.unique(rejoin_fragments(np.arange(3), _paths([a, b, c]), same_structures, 200)).size == 1
+    labels = rejoin_fragments(np.arange(3), _paths([a, b, c]), same_structures, 200, max_apart=40.0)
+    assert labels[1] == labels[2] != labels[0]
+    assert np.unique(rejoin_fragments(np.arange(2), _paths([a, c]), same_structures[:2], 200,
+                                      max_apart=40.0)).size == 1
+
+
 def test_rejoin_never_joins_a_fragment_that_goes_along_with_another_object() -> None:
     """Object A (frames 0-49, y 10) leaves; object P (y 300) is seen all along. A fragment
     with A's structures appears at frame 80 on P (5 px from P's cluster, for all its frames):

@@ -38,6 +38,9 @@ for most of its frames) that are mostly seen with that group elsewhere: it is on
 Where an object's motion says nothing of where it comes back (it left the view, or was away for
 longer than ``lone_gap``), structures made of discretised colours are not enough: the two
 fragments' regions must also have the same colours (:mod:`trap_core.robust.end_colours`).
+Nor is a group joined where one of its fragments would follow one of the other's that it could
+not have become in the frames between (:mod:`trap_core.robust.reach`): pairs are joined one at
+a time, and two look-alikes that each rejoin a third fragment would otherwise be one object.
 """
 from __future__ import annotations
 
@@ -51,6 +54,7 @@ from trap_core.mining import MiningResult
 from trap_core.robust._kernels import companions_apart, cut_counts, group_distances, mean_pair_distances
 from trap_core.robust.camera import map_points
 from trap_core.robust.end_colours import MIN_MATCH, EndColours
+from trap_core.robust.reach import FragmentReach
 
 
 class BorderContacts(NamedTuple):
@@ -129,7 +133,8 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     with the other's group and apart from it (:func:`_on_another_object`). With ``colours``
     (each fragment's at its ends, :class:`EndColours`), two fragments across a sure exit and
     entry, or more than ``lone_gap`` frames apart, are joined only where their colours match
-    (``MIN_MATCH``).
+    (``MIN_MATCH``). Where one group's fragment follows the other's after a gap, it must begin
+    within reach of where that one ended (:class:`FragmentReach`, ``max_apart`` of slack).
     """
     labels = np.unique(labels, return_inverse=True)[1]
     summary = summarise(labels, paths, np.ones(labels.size), n_frames)
@@ -169,6 +174,7 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
         by_colours |= leaves[earlier] & enters[later]
     group = np.arange(n_clusters)
     group_covered = summary.covered.copy()
+    reach = FragmentReach(summary.paths, transforms, max_apart)
     along = _going_along(summary, overlap, ALONG_FRAMES * max_overlap, max_apart / 4)
     for pair in np.lexsort((costs, shown, unsure)):
         a, b = group[earlier[pair]], group[later[pair]]
@@ -180,6 +186,8 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
         if _on_another_object(summary, group, group_covered, earlier[pair], later[pair], along, max_apart):
             continue
         if by_colours[pair] and colours.match(earlier[pair], later[pair]) < MIN_MATCH:
+            continue
+        if not reach.seams_within_reach(np.flatnonzero(group == a), np.flatnonzero(group == b)):
             continue
         group[group == b] = a
         group_covered[a] |= group_covered[b]

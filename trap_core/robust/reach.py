@@ -22,7 +22,7 @@ from trap_core.clustering import Trajectories
 from trap_core.robust.camera import map_points
 
 PACE = 3.0  # an object out of sight goes at most this many times as fast as it went in sight
-TAIL = 10  # frames at a fragment's end (start) over which its motion there is read
+TAIL = 10  # frames at a fragment's end (start) over which its motion there is read (here and in its predictions)
 
 
 class FragmentReach:

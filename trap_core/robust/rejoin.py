@@ -54,7 +54,7 @@ from trap_core.mining import MiningResult
 from trap_core.robust._kernels import companions_apart, cut_counts, group_distances, mean_pair_distances
 from trap_core.robust.camera import map_points
 from trap_core.robust.end_colours import MIN_MATCH, EndColours
-from trap_core.robust.reach import FragmentReach
+from trap_core.robust.reach import TAIL, FragmentReach
 
 
 class BorderContacts(NamedTuple):
@@ -249,9 +249,9 @@ def _prediction_errors(paths: Trajectories, earlier: np.ndarray, later: np.ndarr
     if earlier.size == 0:
         return np.zeros(0)
     ends, slot = np.unique(earlier, return_inverse=True)
-    # a path's last motion runs from the first to the last of its last (up to) 10 points
+    # a path's last motion runs from the first to the last of its last (up to) TAIL points
     last_frame = paths.end[ends]
-    tail = np.minimum(last_frame - paths.start[ends] + 1, 10)
+    tail = np.minimum(last_frame - paths.start[ends] + 1, TAIL)
     last_row = paths.offsets[ends + 1] - 1
     last_in_view, velocity_in_view = _steady(paths.points[last_row - tail + 1], paths.points[last_row], tail)
     gap = (paths.start[later] - paths.end[earlier])[:, None]

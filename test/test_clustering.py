@@ -41,6 +41,23 @@ def test_distance_matches_the_formula_and_the_papers_example() -> None:
     assert pattern_distances(_paths([a, b]))[0] == pytest.approx((3 + 4 + 5) / 3 * (2 - 3 / 8))
 
 
+def test_distance_bands_filled_on_threads_give_the_matrix_of_one_pass() -> None:
+    from trap_core.clustering.distance import row_bands
+    rng = np.random.default_rng(1)
+    segments = [(int(rng.integers(0, 30)), rng.uniform(0, 100, size=(int(rng.integers(1, 25)), 2))) for _ in range(57)]
+    paths = _paths(segments)
+    one = pattern_distances(paths)
+    for threads in (2, 3, 7, 100):
+        np.testing.assert_array_equal(pattern_distances(paths, threads), one)
+    for n in (0, 1, 2, 5, 57, 1000):
+        for bands in (1, 2, 3, 8):
+            bounds = row_bands(n, bands)
+            assert bounds[0] == 0 and bounds[-1] == n and np.all(np.diff(bounds) > 0 if n else True)
+            assert bounds.size - 1 <= bands
+    pairs = [sum(999 - a for a in range(lo, hi)) for lo, hi in zip(*[row_bands(1000, 4)[i:] for i in (0, 1)])]
+    assert max(pairs) - min(pairs) < 1000  # within one row's pairs of each other
+
+
 def test_trajectories_average_and_interpolate() -> None:
     frames = np.array([2, 2, 5])
     positions = np.array([[0.0, 0.0], [2.0, 2.0], [4.0, 7.0]])

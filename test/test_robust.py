@@ -863,6 +863,49 @@ def test_robust_beats_paper_on_a_short_video(short_video) -> None:
     assert min(robust[:2]) > 0.5
 
 
+def test_tracks_built_and_distances_computed_on_threads_are_those_of_one_thread(short_video, monkeypatch) -> None:
+    """With ``threads`` 2 the pattern distances are filled in bands of rows and the clusters' tracks
+    that a rule asks for together are built at once, on worker threads: every track and label is
+    the same as on one thread, and each cluster asked for (in any order, more than once) gets its
+    own track."""
+    import threading
+
+    import trap_core.pipeline.tracking as tracking
+    from trap_core.pipeline.track_rules import ClusterTracks
+    graphs, _ = short_video
+    one = track(graphs, dataclasses.replace(_BASE, threads=1))
+    built_on: set[str] = set()
+    builders: list[ClusterTracks] = []
+    build, rules = ClusterTracks._build, tracking.tracks_of_clusters
+
+    def spied_build(self, cluster: int):
+        built_on.add(threading.current_thread().name)
+        return build(self, cluster)
+
+    def spied_rules(clusters, tracks_of, *rest):
+        builders.append(tracks_of)
+        return rules(clusters, tracks_of, *rest)
+    monkeypatch.setattr(ClusterTracks, "_build", spied_build)
+    monkeypatch.setattr(tracking, "tracks_of_clusters", spied_rules)
+    several = track(graphs, dataclasses.replace(_BASE, threads=2))
+    assert any(name.startswith("trap-work") for name in built_on)
+    np.testing.assert_array_equal(several.labels, one.labels)
+    assert len(several.tracks) == len(one.tracks) > 0
+    for mine, theirs in zip(several.tracks, one.tracks):
+        for field in dataclasses.fields(mine):
+            np.testing.assert_array_equal(getattr(mine, field.name), getattr(theirs, field.name), err_msg=field.name)
+    clusters = np.unique(several.labels[several.labels >= 0])[::-1].tolist()
+    asked = [*clusters, clusters[0]]
+    assert len(clusters) > 3
+    threaded, alone = (dataclasses.replace(builders[0], _built={}, params=dataclasses.replace(_BASE, threads=n))
+                       for n in (2, 1))
+    for mine, cluster in zip(threaded.many(asked), asked):
+        theirs = alone(cluster)
+        assert mine.cluster == cluster
+        for field in dataclasses.fields(mine):
+            np.testing.assert_array_equal(getattr(mine, field.name), getattr(theirs, field.name), err_msg=field.name)
+
+
 def test_a_video_where_nothing_moves_relative_to_the_camera_has_no_tracks() -> None:
     """The camera pans over a scene without objects: no pattern passes the speed test, so no
     cluster is left: 0 tracks, not an error."""
@@ -1487,6 +1530,11 @@ def _cover(n_frames: int, *tracks) -> object:
     return summarise(np.arange(len(tracks)), paths, np.ones(len(tracks)), n_frames)
 
 
+def _built_from(tracks: list) -> object:
+    """The tracks of clusters ``0..len(tracks) - 1`` as a rule asks for several at once."""
+    return lambda clusters: [tracks[c] for c in clusters]
+
+
 def test_a_stretch_on_a_lookalike_is_mended_by_a_cluster_that_held_the_object_elsewhere() -> None:
     """Track 2 holds the bounced look-alike until they touch (frame 50), then the passing one;
     track 1 holds the bounced one all along. A cluster left out holds the passing one all along:
@@ -1497,14 +1545,14 @@ def test_a_stretch_on_a_lookalike_is_mended_by_a_cluster_that_held_the_object_el
     frames = np.arange(100)
     tracks = [_as_track(1, frames, bounced), _as_track(2, frames, np.vstack([bounced[:50], passing[50:]]))]
     candidates = [_as_track(0, frames, passing)]
-    out = mend_shared_stretches(tracks, _cover(100, *candidates), np.arange(1), 100, 25, lambda c: candidates[c])
+    out = mend_shared_stretches(tracks, _cover(100, *candidates), np.arange(1), 100, 25, _built_from(candidates))
     np.testing.assert_allclose(out[0].boxes, bounced)
     np.testing.assert_allclose(out[1].boxes, passing)
     mixed = [*candidates, _as_track(0, frames, np.vstack([passing[:50], bounced[50:]]))]  # traded: mends track 1
-    tied = mend_shared_stretches(tracks, _cover(100, *mixed), np.arange(2), 100, 25, lambda c: mixed[c])
+    tied = mend_shared_stretches(tracks, _cover(100, *mixed), np.arange(2), 100, 25, _built_from(mixed))
     np.testing.assert_allclose(tied[1].boxes, tracks[1].boxes)
     seen = [*tracks, _as_track(3, frames[:50], passing[:50])]  # the passing one was tracked: nothing to mend
-    kept = mend_shared_stretches(seen, _cover(100, *candidates), np.arange(1), 100, 25, lambda c: candidates[c])
+    kept = mend_shared_stretches(seen, _cover(100, *candidates), np.arange(1), 100, 25, _built_from(candidates))
     np.testing.assert_allclose(kept[1].boxes, tracks[1].boxes)
 
 
@@ -1522,8 +1570,7 @@ def test_where_both_tracks_are_mended_the_one_whose_menders_held_its_object_far_
     for beside, lender, mended in ((15, passing, True), (20, passing, False), (15, jumped, False)):
         hopping = np.vstack([passing[:50], bounced[50:50 + beside]])
         candidates = [_as_track(0, frames, lender), _as_track(0, frames[:50 + beside], hopping)]
-        out = mend_shared_stretches(tracks, _cover(100, *candidates), np.arange(2), 100, 25,
-                                    lambda c: candidates[c])
+        out = mend_shared_stretches(tracks, _cover(100, *candidates), np.arange(2), 100, 25, _built_from(candidates))
         np.testing.assert_allclose(out[0].boxes, bounced)
         np.testing.assert_allclose(out[1].boxes, lender if mended else tracks[1].boxes)
 

@@ -9,18 +9,20 @@ from trap_core.mining._kernels import _root  # union-find root with path halving
 from trap_core.rag._kernels import _grow, nodes_box, stacked_sets_nodes
 
 
-@nb.njit(cache=True, nogil=True, parallel=False)
-def pairwise_distance(start: np.ndarray, end: np.ndarray, offsets: np.ndarray, points: np.ndarray) -> np.ndarray:
-    """Condensed matrix of d(A, B) = d_traj * (2 - d_ov) (TRAP_SPEC section 5), inf where two
-    trajectories share fewer than two frames.
+@nb.njit(cache=True, nogil=True)
+def pairwise_distance(start: np.ndarray, end: np.ndarray, offsets: np.ndarray, points: np.ndarray, first: int,
+                      last: int, out: np.ndarray) -> None:
+    """Rows ``first..last - 1`` of the condensed matrix ``out`` of d(A, B) = d_traj * (2 - d_ov)
+    (TRAP_SPEC section 5), inf where two trajectories share fewer than two frames: the pairs
+    (a, b > a) for a in that range, in place. Each pair's value is computed on its own, so
+    bands of rows filled on several threads give the same matrix as one pass.
 
     Trajectory i covers frames ``start[i]..end[i]``; its points are
     ``points[offsets[i]:offsets[i + 1]]`` (one per frame, gaps already interpolated).
     """
     n = start.size
-    out = np.empty(n * (n - 1) // 2, dtype=np.float64)
-    k = 0
-    for a in range(n):
+    k = first * (2 * n - first - 1) // 2  # pairs in the rows before ``first``
+    for a in range(first, last):
         for b in range(a + 1, n):
             fs = max(start[a], start[b])
             fe = min(end[a], end[b])
@@ -37,7 +39,6 @@ def pairwise_distance(start: np.ndarray, end: np.ndarray, offsets: np.ndarray, p
                 overlap = (fe - fs + 1) / (max(end[a], end[b]) - min(start[a], start[b]) + 1)
                 out[k] = total / (fe - fs + 1) * (2.0 - overlap)
             k += 1
-    return out
 
 
 @nb.njit(cache=True, nogil=True)

@@ -16,6 +16,7 @@ import numpy as np
 
 from trap_core.clustering import ClusterSummary, Track, build_track, frame_cores, in_rows, reaches_border, twin_clusters
 from trap_core.mining import MiningResult
+from trap_core.ordered import each_on_threads
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, StackedGraphs
 from trap_core.robust import (GroupBoxes, colour_overlap, colour_shares, continue_to_border, continue_tracks,
@@ -48,6 +49,16 @@ class ClusterTracks:
         if cluster not in self._built:
             self._built[cluster] = self._build(cluster)
         return replace(self._built[cluster], track_id=track_id)
+
+    def many(self, clusters: Sequence[int]) -> list[Track]:
+        """The tracks of ``clusters`` (id 0), those not built yet built ``params.threads`` at once:
+        a build is mostly compiled kernels that release the GIL, and the rules that ask for
+        several tracks (the selected clusters, the candidates that may mend or bring back a
+        track) know them all before reading any."""
+        missing = [cluster for cluster in dict.fromkeys(clusters) if cluster not in self._built]
+        for cluster, built in zip(missing, each_on_threads(self._build, missing, self.params.threads)):
+            self._built[cluster] = built
+        return [self(cluster) for cluster in clusters]
 
     @cached_property
     def _edge_pixel(self) -> float:
@@ -97,7 +108,7 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
     robust = params.method == "robust"
     width, height = view
     summary, selected, moving = clusters.summary, clusters.selected, clusters.moving
-    tracks = [tracks_of(cluster, track_id) for track_id, cluster in enumerate(selected, start=1)]
+    tracks = [replace(t, track_id=i) for i, t in enumerate(tracks_of.many(selected), start=1)]
     counted = robust and params.one_track and not params.n_objects  # the unsupervised count's tracks
     need = params.track_frames(n_frames)
     short = summary.length < need  # per cluster: selected (if at all) for pass_frames alone
@@ -108,8 +119,7 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
     if own_frames and not params.n_objects:
         twins = twin_clusters(summary, selected, n_frames, params.track_length(n_frames), params.separation,
                               params.tau, moving)
-        tracks = extend_from_twins(tracks, [tracks_of(cluster) for cluster in twins], params.tau, params.size_jump,
-                                   view=view)
+        tracks = extend_from_twins(tracks, tracks_of.many(twins), params.tau, params.size_jump, view=view)
     placed = GroupBoxes({})
     if robust and (params.size_jump or params.groups):
         seen = tracks
@@ -179,7 +189,8 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
     alike = _lookalikes(tracks, clusters, tracks_of.graphs)
     tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
     spare = _spare_clusters(clusters, params.tau)
-    tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, tracks_of, window=motion_window)
+    tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, tracks_of.many,
+                                   window=motion_window)
     tracks = drop_shared_stretches(tracks, n_frames, params.tau, motion_window)
     tracks = drop_repeated_pieces(tracks, motion_window, min_frames=params.tau)
     tracks = [t for t in (drop_stray_pieces(t, n_frames, motion_window, params.tau) for t in tracks) if len(t)]
@@ -221,8 +232,7 @@ def _returns_of_spares(tracks: list[Track], clusters: Clusters, tracks_of: Clust
         x, y = paths.points[paths.offsets[spare]].T
         near = (np.minimum(x, width - x) <= 2 * size[0]) | (np.minimum(y, height - y) <= 2 * size[1])
         out = []
-        for cluster in spare[near].tolist():
-            built = tracks_of(cluster)
+        for built in tracks_of.many(spare[near].tolist()):
             own = ~repeats_others(built, tracks, 0.5, centred=True)
             if own.sum() >= params.tau:
                 out.append(in_rows(built, own))

@@ -96,7 +96,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         """The lifetime cut of ``patterns`` (``paths``: their trajectories), then with the robust
         method clusters that mix objects split (their sizes from ``result``)."""
         start = time.perf_counter()
-        distances = pattern_distances(paths)
+        distances = pattern_distances(paths, params.threads)
         seconds["distances"] += time.perf_counter() - start
         hierarchy = cluster_patterns(distances, len(paths), params.linkage, params.ignore_top)
         labels = hierarchy.labels

@@ -238,7 +238,7 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
 
 
 def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, candidates: np.ndarray, n_frames: int,
-                          min_frames: int, build: Callable[[int], Track], min_iou: float = 0.5,
+                          min_frames: int, build: Callable[[Sequence[int]], list[Track]], min_iou: float = 0.5,
                           min_inside: float = 0.9, min_share: float = 0.8, window: int = 12) -> list[Track]:
     """Tracks whose stretch on another track's object is replaced by the boxes of a cluster of
     ``candidates`` that held their own object meanwhile.
@@ -249,7 +249,8 @@ def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, cand
     ``min_share`` of at least half of them where the track has a box, the test of
     :func:`trap_core.robust.merge_duplicates`: IoU at least ``min_iou``, or one box at least
     ``min_inside`` inside the other, as where the candidate's box takes in a look-alike still
-    touching the object), and in the stretch it has boxes that repeat no track's in at least
+    touching the object; its boxes from ``build``, which gives the tracks of several clusters at
+    once), and in the stretch it has boxes that repeat no track's in at least
     half its frames: the object was elsewhere, where nothing tracked it. The track's boxes in
     the stretch are replaced by those, and the other track keeps the stretch. Where candidates mend both
     tracks, the one whose menders held its object beside the stretch ``SUPPORT_RATIO`` times longer
@@ -262,11 +263,11 @@ def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, cand
     boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
     built: dict[int, tuple[Track, np.ndarray]] = {}  # per candidate: its track, its box per frame
 
-    def boxes_of(cluster: int) -> np.ndarray:
-        if cluster not in built:
-            track = build(cluster)
+    def boxes_of(clusters: list[int]) -> list[np.ndarray]:
+        missing = [cluster for cluster in clusters if cluster not in built]
+        for cluster, track in zip(missing, build(missing)):
             built[cluster] = (track, box_path(track, n_frames))
-        return built[cluster][1]
+        return [built[cluster][1] for cluster in clusters]
 
     for a in range(len(out)):
         for b in range(a + 1, len(out)):
@@ -295,11 +296,13 @@ def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, cand
 
 
 def _menders(boxes: np.ndarray, slot: int, stretch_ends: tuple[int, int], summary: ClusterSummary,
-             candidates: np.ndarray, window: int, boxes_of: Callable[[int], np.ndarray],
+             candidates: np.ndarray, window: int, boxes_of: Callable[[list[int]], list[np.ndarray]],
              thresholds: tuple[float, float, float]) -> dict[int, np.ndarray]:
     """The candidates that mend track ``slot``'s stretch (first and last frame ``stretch_ends``)
     given the ``window`` frames beside it and ``thresholds`` ``min_iou, min_inside, min_share``
-    (see :func:`mend_shared_stretches`), each with the stretch frames it lends."""
+    (see :func:`mend_shared_stretches`), each with the stretch frames it lends. The tests on
+    the candidates' mean positions come first, for all of them: only those that pass have their
+    boxes built (``boxes_of``, per video frame), all at once."""
     start, end = stretch_ends
     min_iou, min_inside, min_share = thresholds
     n_frames = boxes.shape[1]
@@ -308,7 +311,7 @@ def _menders(boxes: np.ndarray, slot: int, stretch_ends: tuple[int, int], summar
     seen = np.flatnonzero(~np.isnan(own[:, 0]))
     sides = (seen[seen < start][::-1], seen[seen > end])  # nearest the stretch first
     others = np.delete(boxes, slot, axis=0)
-    menders = {}
+    near: dict[int, list[np.ndarray]] = {}  # per candidate that passes: its frames beside the stretch
     for cluster in candidates.tolist():
         inside = stretch[summary.covered[cluster, stretch]]
         if inside.size < stretch.size / 2 or np.count_nonzero(~np.any(_within(
@@ -318,9 +321,10 @@ def _menders(boxes: np.ndarray, slot: int, stretch_ends: tuple[int, int], summar
                   if common.size >= window / 2 and min(abs(common[0] - start), abs(common[0] - end)) <= window]
         beside = [common for common in beside  # its patterns' mean position in the track's box
                   if np.mean(_within(summary.paths.at(cluster, common), own[common])) >= min_share]
-        if not beside:  # (cheap tests on the mean positions first: building a candidate's boxes is not)
-            continue
-        lent = boxes_of(cluster)
+        if beside:
+            near[cluster] = beside
+    menders = {}
+    for (cluster, beside), lent in zip(near.items(), boxes_of(list(near))):
         if not any(np.mean(same_boxes(lent[common], own[common], min_iou, min_inside)) >= min_share
                    for common in beside):
             continue

@@ -52,7 +52,7 @@ def test_distance_bands_filled_on_threads_give_the_matrix_of_one_pass() -> None:
     for n in (0, 1, 2, 5, 57, 1000):
         for bands in (1, 2, 3, 8):
             bounds = row_bands(n, bands)
-            assert bounds[0] == 0 and bounds[-1] == n and np.all(np.diff(bounds) > 0 if n else True)
+            assert bounds[0] == 0 and bounds[-1] == n and (n == 0 or np.all(np.diff(bounds) > 0))
             assert bounds.size - 1 <= bands
     pairs = [sum(999 - a for a in range(lo, hi)) for lo, hi in zip(*[row_bands(1000, 4)[i:] for i in (0, 1)])]
     assert max(pairs) - min(pairs) < 1000  # within one row's pairs of each other

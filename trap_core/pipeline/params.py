@@ -170,7 +170,7 @@ class TrapParams:
                                    "ask (ours: an object that crosses the view in seconds is seen whole); 0 = off")
     separation: float = _p(40.0, "px (of the working size, max_side): a cluster this close to kept tracks in most "
                                  "of its frames is not a new object (ours)")
-    threads: int = _p(2, "threads: frames segmented, or enumerated (mining), at once; so are bands of the pattern "
+    threads: int = _p(2, "frames segmented, or enumerated (mining), at once, and so bands of the pattern "
                          "distances and the clusters' tracks a rule asks for together")
 
     def __post_init__(self) -> None:

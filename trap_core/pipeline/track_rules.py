@@ -46,9 +46,7 @@ class ClusterTracks:
 
     def __call__(self, cluster: int, track_id: int = 0) -> Track:
         """The cluster's track with id ``track_id``."""
-        if cluster not in self._built:
-            self._built[cluster] = self._build(cluster)
-        return replace(self._built[cluster], track_id=track_id)
+        return replace(self.many([cluster])[0], track_id=track_id)
 
     def many(self, clusters: Sequence[int]) -> list[Track]:
         """The tracks of ``clusters`` (id 0), those not built yet built ``params.threads`` at once:
@@ -58,7 +56,7 @@ class ClusterTracks:
         missing = [cluster for cluster in dict.fromkeys(clusters) if cluster not in self._built]
         for cluster, built in zip(missing, each_on_threads(self._build, missing, self.params.threads)):
             self._built[cluster] = built
-        return [self(cluster) for cluster in clusters]
+        return [self._built[cluster] for cluster in clusters]
 
     @cached_property
     def _edge_pixel(self) -> float:
@@ -189,8 +187,7 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
     alike = _lookalikes(tracks, clusters, tracks_of.graphs)
     tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
     spare = _spare_clusters(clusters, params.tau)
-    tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, tracks_of.many,
-                                   window=motion_window)
+    tracks = mend_shared_stretches(tracks, summary, spare, n_frames, params.tau, tracks_of.many, window=motion_window)
     tracks = drop_shared_stretches(tracks, n_frames, params.tau, motion_window)
     tracks = drop_repeated_pieces(tracks, motion_window, min_frames=params.tau)
     tracks = [t for t in (drop_stray_pieces(t, n_frames, motion_window, params.tau) for t in tracks) if len(t)]

@@ -21,9 +21,11 @@ later still, every video with Felzenszwalb's regions as ``process_bag`` makes th
 the tracks found without being told the number of objects, each object's box precision/recall
 (%) and MOTA / IDF1 / HOTA; per set, the mean precision x recall, the share of objects at 90/90
 or better and the mean MOTA / IDF1, and that share over all sets run; with ``--pictures DIR``,
-each video's tracks as a contact sheet, a timeline and a timeline of the objects they hold.
+each video's tracks as a contact sheet, a timeline and a timeline of the objects they hold; with
+``--losses``, after each set, its objects under 90/90 with the frames and box area their tracks
+lose by cause (``trap_core.evaluation.losses``) and a count of what loses the most.
 Graphs are cached (``--cache``), so a second run only tracks.
-Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,encoded,later] [-p name:=value]``
+Run: ``.venv/bin/python benchmarks/quality.py [--sets analogues,tuned,...,encoded,later] [--losses] [-p name:=value]``
 (segmentation and graph parameters among the overrides make and cache graphs of their own).
 """
 from __future__ import annotations
@@ -35,6 +37,7 @@ import os
 import pickle
 import re
 import time
+from collections import Counter
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import NamedTuple
@@ -42,7 +45,9 @@ from typing import NamedTuple
 import numpy as np
 
 from trap_core.cli import parameter_assignment
-from trap_core.evaluation import boxes_by_frame, match_objects, mot_measures, object_timeline
+from trap_core.evaluation import (ObjectLosses, boxes_by_frame, match_objects, mot_measures, object_losses,
+                                  object_timeline)
+from trap_core.evaluation.losses import MISSED, OFF, losses_chart
 from trap_core.clustering import Track
 from trap_core.outputs import Thumbnails, contact_sheet, track_timeline
 from trap_core.pipeline import GRAPH_STAGE, ParameterError, TrapParams, synthetic_graphs, track
@@ -563,10 +568,19 @@ class VideoScore(NamedTuple):
     """One video tracked and scored: its table row, and what each set's summary adds up."""
 
     row: str            # | label | tracks / objects | per object P/R % | MOTA | IDF1 | HOTA | s |
-    products: list[float]  # per object: box precision x recall
-    good: list[bool]    # per object: at 90/90 or better (as printed)
+    losses: list[ObjectLosses]  # per object: its precision and recall, and what its track loses by cause
     mota: float
     id_f1: float
+
+    @property
+    def products(self) -> list[float]:
+        """Per object: box precision x recall."""
+        return [lost.precision * lost.recall for lost in self.losses]
+
+    @property
+    def good(self) -> list[bool]:
+        """Per object: at 90/90 or better (as printed)."""
+        return [lost.good for lost in self.losses]
 
 
 def slug(label: str) -> str:
@@ -587,13 +601,13 @@ def score_video(label: str, scene: dict, segmentation: str, cache: Path, overrid
     if pictures:
         _pictures(scene, result.tracks, truth, len(graphs), pictures)
     boxes = [boxes_by_frame(t) for t in result.tracks]
-    objects = match_objects(boxes, truth)
+    losses = [object_losses(None if matched is None else boxes[matched], truth, obj)
+              for obj, (matched, _, _) in enumerate(match_objects(boxes, truth))]
     scores = mot_measures(boxes, truth)
-    per_object = ", ".join(f"{100 * p:.0f}/{100 * r:.0f}" for _, p, r in objects)
+    per_object = ", ".join(f"{100 * lost.precision:.0f}/{100 * lost.recall:.0f}" for lost in losses)
     row = (f"| {label} | {len(result.tracks)} / {len(truth)} | {per_object} | {scores['MOTA']:.2f} | "
            f"{scores['IDF1']:.2f} | {scores['HOTA']:.2f} | {seconds:.1f} |")
-    return VideoScore(row, [p * r for _, p, r in objects], [p >= 0.895 and r >= 0.895 for _, p, r in objects],
-                      scores["MOTA"], scores["IDF1"])
+    return VideoScore(row, losses, scores["MOTA"], scores["IDF1"])
 
 
 def set_summary(name: str, scores: list[VideoScore]) -> str:
@@ -618,7 +632,37 @@ def score_set(name: str, videos: Sequence[tuple[str, dict, str]], args: argparse
         scores.append(score_video(label, scene, segmentation, args.cache, dict(args.overrides), pictures))
         print(scores[-1].row, flush=True)
     print(f"\n{set_summary(name, scores)}")
+    if args.losses:
+        print(f"\n{losses_table(videos, scores)}")
     return scores
+
+
+def losses_table(videos: Sequence[tuple[str, dict, str]], scores: list[VideoScore]) -> str:
+    """Each object under 90/90 of ``videos`` (their ``scores``): its precision/recall, what loses
+    the most (:attr:`~trap_core.evaluation.ObjectLosses.cause`), the frames the recall test misses
+    by cause and the share of box area off the object by cause; then how many objects each cause
+    loses most."""
+    head = ("| video | object | P/R % | loses most | frames missed: " + ", ".join(MISSED) + " | box area off %: "
+            + ", ".join(OFF) + " |\n|---|---|---|---|---|---|")
+    rows = []
+    for (label, _, _), score in zip(videos, scores):
+        for obj, lost in enumerate(score.losses):
+            if lost.good:
+                continue
+            off = ", ".join(f"{100 * lost.off[cause] / lost.area:.0f}" if lost.area else "-" for cause in OFF)
+            rows.append(f"| {label} | {obj + 1} | {100 * lost.precision:.0f}/{100 * lost.recall:.0f} | {lost.cause} | "
+                        + ", ".join(str(lost.missed[cause]) for cause in MISSED) + f" | {off} |")
+    return "\n".join([head, *rows, "", f"under 90/90, by what loses the most: {counted(causes_of(scores))}"])
+
+
+def causes_of(scores: list[VideoScore]) -> Counter:
+    """How many objects under 90/90 of ``scores`` each cause loses the most."""
+    return Counter(lost.cause for score in scores for lost in score.losses if not lost.good)
+
+
+def counted(causes: Counter) -> str:
+    """``causes`` as a line, most first: ``cause count, ...`` (``none`` where there are none)."""
+    return ", ".join(f"{cause} {count}" for cause, count in causes.most_common()) or "none"
 
 
 def check_arguments(parser: argparse.ArgumentParser, sets: str, overrides: list[tuple[str, object]]) -> None:
@@ -644,6 +688,9 @@ def add_run_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--pictures", type=Path, metavar="DIR",
                         help="also write each video's contact sheet, timeline of tracks and of the objects they "
                              "hold here")
+    parser.add_argument("--losses", action="store_true",
+                        help="after each set, a table of its objects under 90/90: the frames and box area their "
+                             "tracks lose, by cause")
     parser.add_argument("-p", dest="overrides", action="append", default=[], type=parameter_assignment,
                         metavar="NAME:=VALUE", help="parameter for every run (as process_bag's -p)")
 
@@ -655,11 +702,18 @@ def main() -> None:
     args = parser.parse_args()
     check_arguments(parser, args.sets, args.overrides)
     all_good: list[bool] = []
+    causes_by_set: dict[str, Counter] = {}
     for name in args.sets.split(","):
         print(f"\n### {name}\n")
         scores = score_set(name, SETS[name], args, lambda _, label: f"{name}_{slug(label)}")
         all_good += [good for score in scores for good in score.good]
+        causes_by_set[name] = causes_of(scores)
     print(f"\nall sets: objects at 90/90 {sum(all_good)}/{len(all_good)}")
+    if args.losses:
+        print(f"all sets, under 90/90 by what loses the most: {counted(sum(causes_by_set.values(), Counter()))}")
+        if args.pictures:
+            args.pictures.mkdir(parents=True, exist_ok=True)
+            print(f"picture: {losses_chart(causes_by_set, args.pictures / 'losses.png')}")
 
 
 if __name__ == "__main__":

@@ -10,9 +10,10 @@ import numpy as np
 import pytest
 
 from trap_core.evaluation import (box_precision_recall, cluster_precision_recall, held_objects, leaked_pixels,
-                                  leaked_regions, object_timeline)
+                                  leaked_regions, object_losses, object_timeline)
 from trap_core.evaluation.baselines import run_baselines
 from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores
+from trap_core.evaluation.losses import losses_chart
 from trap_core.pipeline import TrapParams, delivered_frames, frame_regions, synthetic_graphs, track
 from trap_core.synthetic import PRESETS, SceneConfig, render, write_synthetic
 
@@ -36,6 +37,48 @@ def test_held_objects_follow_a_track_that_trades_and_leaves_its_object(tmp_path:
     assert [held[f] for f in range(10)] == [0, 0, 1, 0, 0, -1, -1, 1, 1, 1]
     picture = object_timeline([track], truth, 10, tmp_path / "objects.png")
     assert picture.stat().st_size > 1000
+
+
+def test_an_objects_losses_add_up_to_what_its_precision_and_recall_miss() -> None:
+    """Object 0 (20x20) is in view over frames 0-19, object 1 over 0-29. The track matched to
+    object 0 starts in frame 3, has a gap over 8-9, goes onto object 1 over 12-13 and onto the
+    background in frame 15, and is 10 px too wide (half of it off the object) over 16-17; it
+    ends in frame 21, two frames after object 0 left. Each frame and each pixel of box area
+    it misses is counted once, under its cause."""
+    truth = [{f: (10.0, 10.0, 20.0, 20.0) for f in range(20)}, {f: (100.0, 10.0, 20.0, 20.0) for f in range(30)}]
+    track = {f: (10.0, 10.0, 20.0, 20.0) for f in range(3, 22) if f not in (8, 9)}
+    track.update({12: (100.0, 10.0, 20.0, 20.0), 13: (100.0, 10.0, 20.0, 20.0), 15: (300.0, 10.0, 20.0, 20.0),
+                  16: (10.0, 10.0, 30.0, 20.0), 17: (10.0, 10.0, 30.0, 20.0)})
+    losses = object_losses(track, truth, 0)
+    assert losses.missed == {"no track": 0, "before or after the track": 3, "in the track's gaps": 2,
+                             "on another object": 2, "on nothing": 1}
+    assert losses.off == {"on its object": 2 * 200.0, "on another object": 2 * 400.0, "on nothing": 400.0,
+                          "object not in view": 2 * 400.0}
+    precision, recall = box_precision_recall(track, truth[0])
+    assert (losses.precision, losses.recall) == (precision, recall)
+    assert sum(losses.missed.values()) == pytest.approx((1 - recall) * losses.frames)
+    assert sum(losses.off.values()) == pytest.approx((1 - precision) * losses.area)
+    assert not losses.good and losses.cause == "before or after the track"  # recall 12/20 falls short
+    onto_other = {f: box for f, box in track.items() if f not in (15, 20, 21)}
+    onto_other.update({f: truth[0][f] for f in (0, 1, 2, 8, 9)})
+    onto_other.update({f: (100.0, 10.0, 20.0, 20.0) for f in (20, 21)})  # after object 0 left: on object 1
+    tight = object_losses(onto_other, truth, 0)  # frame 15 a gap, 12-13 on object 1: 17 of 20 (90 % needs 18)
+    assert tight.recall == pytest.approx(17 / 20) and tight.cause == "on another object"
+    precise = object_losses({f: truth[0][f] for f in range(20)} | {f: (100.0, 10.0, 20.0, 20.0) for f in (20, 21, 22)},
+                            truth, 0)  # every frame held, three boxes on object 1 after object 0 left
+    assert precise.recall == 1 and precise.precision == pytest.approx(20 / 23)
+    assert precise.cause == "box object not in view"
+    nothing = object_losses(None, truth, 1)
+    assert nothing.missed["no track"] == 30 and nothing.cause == "no track" and not nothing.good
+
+
+def test_the_losses_chart_has_a_bar_per_set(tmp_path: Path) -> None:
+    """Two sets, one with nothing under 90/90: the picture is written, a bar per set."""
+    path = losses_chart({"first": {"on another object": 3, "box on its object": 1}, "second": {}},
+                        tmp_path / "losses.png")
+    import matplotlib.image
+    height, width = matplotlib.image.imread(path).shape[:2]
+    assert width == 1000 and height == round(100 * (1.6 + 0.32 * 2))
 
 
 def test_no_object_is_drawn_in_the_grey_of_a_track_on_no_object() -> None:

@@ -34,14 +34,24 @@ def box_precision_recall(track: dict[int, tuple], truth: dict[int, tuple]) -> tu
     boxes; recall = share of annotated frames where the track box's centre lies in the truth box."""
     shared = total = 0.0
     hits = 0
-    for frame, (x, y, w, h) in track.items():
-        total += w * h
+    for frame, box in track.items():
+        total += box[2] * box[3]
         if frame in truth:
-            gx, gy, gw, gh = truth[frame]
-            ix = max(0.0, min(x + w, gx + gw) - max(x, gx))
-            iy = max(0.0, min(y + h, gy + gh) - max(y, gy))
-            shared += ix * iy
-            cx, cy = x + w / 2, y + h / 2
-            hits += gx <= cx <= gx + gw and gy <= cy <= gy + gh
+            shared += shared_area(box, truth[frame])
+            hits += centre_inside(box, truth[frame])
     precision = shared / total if total else 0.0
     return precision, hits / len(truth) if truth else 0.0
+
+
+def centre_inside(box: tuple, truth_box: tuple) -> bool:
+    """Whether the centre of ``box`` (x, y, w, h) lies in ``truth_box``: the recall test."""
+    x, y, w, h = box
+    gx, gy, gw, gh = truth_box
+    return bool(gx <= x + w / 2 <= gx + gw and gy <= y + h / 2 <= gy + gh)
+
+
+def shared_area(box: tuple, truth_box: tuple) -> float:
+    """Area two boxes (x, y, w, h) share: what precision counts."""
+    x, y, w, h = box
+    gx, gy, gw, gh = truth_box
+    return max(0.0, min(x + w, gx + gw) - max(x, gx)) * max(0.0, min(y + h, gy + gh) - max(y, gy))

@@ -47,7 +47,7 @@ import numpy as np
 from trap_core.cli import parameter_assignment
 from trap_core.evaluation import (ObjectLosses, boxes_by_frame, match_objects, mot_measures, object_losses,
                                   object_timeline)
-from trap_core.evaluation.losses import MISSED, OFF, losses_chart
+from trap_core.evaluation.losses import MISSED, OFF, causes_line, losses_chart
 from trap_core.clustering import Track
 from trap_core.outputs import Thumbnails, contact_sheet, track_timeline
 from trap_core.pipeline import GRAPH_STAGE, ParameterError, TrapParams, synthetic_graphs, track
@@ -652,17 +652,12 @@ def losses_table(videos: Sequence[tuple[str, dict, str]], scores: list[VideoScor
             off = ", ".join(f"{100 * lost.off[cause] / lost.area:.0f}" if lost.area else "-" for cause in OFF)
             rows.append(f"| {label} | {obj + 1} | {100 * lost.precision:.0f}/{100 * lost.recall:.0f} | {lost.cause} | "
                         + ", ".join(str(lost.missed[cause]) for cause in MISSED) + f" | {off} |")
-    return "\n".join([head, *rows, "", f"under 90/90, by what loses the most: {counted(causes_of(scores))}"])
+    return "\n".join([head, *rows, "", f"under 90/90, by what loses the most: {causes_line(causes_of(scores))}"])
 
 
-def causes_of(scores: list[VideoScore]) -> Counter:
-    """How many objects under 90/90 of ``scores`` each cause loses the most."""
-    return Counter(lost.cause for score in scores for lost in score.losses if not lost.good)
-
-
-def counted(causes: Counter) -> str:
-    """``causes`` as a line, most first: ``cause count, ...`` (``none`` where there are none)."""
-    return ", ".join(f"{cause} {count}" for cause, count in causes.most_common()) or "none"
+def causes_of(scores: list[VideoScore]) -> list[str]:
+    """What loses the most, for each object under 90/90 of ``scores``."""
+    return [lost.cause for score in scores for lost in score.losses if not lost.good]
 
 
 def check_arguments(parser: argparse.ArgumentParser, sets: str, overrides: list[tuple[str, object]]) -> None:
@@ -702,7 +697,7 @@ def main() -> None:
     args = parser.parse_args()
     check_arguments(parser, args.sets, args.overrides)
     all_good: list[bool] = []
-    causes_by_set: dict[str, Counter] = {}
+    causes_by_set: dict[str, list[str]] = {}
     for name in args.sets.split(","):
         print(f"\n### {name}\n")
         scores = score_set(name, SETS[name], args, lambda _, label: f"{name}_{slug(label)}")
@@ -710,10 +705,12 @@ def main() -> None:
         causes_by_set[name] = causes_of(scores)
     print(f"\nall sets: objects at 90/90 {sum(all_good)}/{len(all_good)}")
     if args.losses:
-        print(f"all sets, under 90/90 by what loses the most: {counted(sum(causes_by_set.values(), Counter()))}")
+        every = [cause for causes in causes_by_set.values() for cause in causes]
+        print(f"all sets, under 90/90 by what loses the most: {causes_line(every)}")
         if args.pictures:
             args.pictures.mkdir(parents=True, exist_ok=True)
-            print(f"picture: {losses_chart(causes_by_set, args.pictures / 'losses.png')}")
+            counts = {name: Counter(causes) for name, causes in causes_by_set.items()}
+            print(f"picture: {losses_chart(counts, args.pictures / 'losses.png')}")
 
 
 if __name__ == "__main__":

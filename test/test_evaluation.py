@@ -13,7 +13,7 @@ from trap_core.evaluation import (box_precision_recall, cluster_precision_recall
                                   leaked_regions, object_losses, object_timeline)
 from trap_core.evaluation.baselines import run_baselines
 from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores
-from trap_core.evaluation.losses import losses_chart
+from trap_core.evaluation.losses import MISSED, OFF, causes_line, losses_chart
 from trap_core.pipeline import TrapParams, delivered_frames, frame_regions, synthetic_graphs, track
 from trap_core.synthetic import PRESETS, SceneConfig, render, write_synthetic
 
@@ -72,13 +72,15 @@ def test_an_objects_losses_add_up_to_what_its_precision_and_recall_miss() -> Non
     assert nothing.missed["no track"] == 30 and nothing.cause == "no track" and not nothing.good
 
 
-def test_the_losses_chart_has_a_bar_per_set(tmp_path: Path) -> None:
+def test_the_losses_chart_has_a_bar_per_set_and_the_counts_line_the_most_first(tmp_path: Path) -> None:
     """Two sets, one with nothing under 90/90: the picture is written, a bar per set."""
     path = losses_chart({"first": {"on another object": 3, "box on its object": 1}, "second": {}},
                         tmp_path / "losses.png")
     import matplotlib.image
     height, width = matplotlib.image.imread(path).shape[:2]
     assert width == 1000 and height == round(100 * (1.6 + 0.32 * 2))
+    assert causes_line(["on nothing", "no track", "on nothing"]) == "on nothing 2, no track 1"
+    assert causes_line([]) == "none"
 
 
 def test_no_object_is_drawn_in_the_grey_of_a_track_on_no_object() -> None:
@@ -166,6 +168,12 @@ def test_evaluate_writes_a_report(tmp_path: Path, venv_bin: Path) -> None:
                              "+ steady box size", "+ where objects meet",
                              "robust (+ across the border)"]
     assert all(0 <= o["box_p"] <= 1 for m in methods.values() for o in m["objects"])
+    for entry in methods.values():  # a cause exactly where an object is under 90/90
+        for o in entry["objects"]:
+            under = min(o["box_p"], o["box_r"]) < 0.895
+            assert bool(o["loses_most"]) == under and (not under or o["loses_most"] in (
+                *MISSED, *(f"box {cause}" for cause in OFF)))
+    assert "robust: loses most" in report
     assert (tmp_path / "report" / "tracks_clip.png").exists()
     assert (tmp_path / "report" / "objects_clip.png").exists() and "(objects_clip.png)" in report
     assert (tmp_path / "report" / "levels_clip_object1.png").exists()

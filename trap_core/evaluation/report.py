@@ -20,6 +20,7 @@ from trap_core.cli import UsageError, parameter_assignment, results_folder, run_
 from trap_core.evaluation.baselines import TRACKERS, run_baselines  # noqa: E402
 from trap_core.evaluation.cluster_scores import best_cluster, leaf_scores, level_curves  # noqa: E402
 from trap_core.evaluation.held_objects import object_timeline  # noqa: E402
+from trap_core.evaluation.losses import causes_line, object_losses  # noqa: E402
 from trap_core.evaluation.paper_measures import box_precision_recall, cluster_precision_recall  # noqa: E402
 from trap_core.evaluation.scoring import boxes_by_frame, match_objects, mot_measures  # noqa: E402
 from trap_core.motformat import ground_truth_path, read_mot  # noqa: E402
@@ -93,10 +94,12 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
         boxes = [boxes_by_frame(t) for t in run.tracks]
         matched = match_objects(boxes, truth)
         objects = []
-        for (k, p, r), gt in zip(matched, truth):
+        for obj, ((k, p, r), gt) in enumerate(zip(matched, truth)):
             cp, cr = (cluster_precision_recall(run.mining, np.flatnonzero(run.labels == run.tracks[k].cluster), gt)
                       if k is not None else (0.0, 0.0))
-            objects.append({"box_p": p, "box_r": r, "cluster_p": cp, "cluster_r": cr})
+            lost = object_losses(None if k is None else boxes[k], truth, obj)
+            objects.append({"box_p": p, "box_r": r, "cluster_p": cp, "cluster_r": cr,
+                            "loses_most": "" if lost.good else lost.cause})
         entry = {"seconds": seconds, "tracks": len(run.tracks), "objects": objects, **mot_measures(boxes, truth),
                  "patterns": run.mining.n_st}
         if overrides["method"] == "paper":
@@ -162,12 +165,15 @@ def markdown(results: list[dict]) -> str:
              "precision = area shared with the ground truth / area of the track boxes, recall = frames whose "
              "box centre lies in the ground-truth box. TRAP columns also give the paper's cluster measures "
              "(occurrences whose nodes all lie in the box). The paper's method is given the number of objects; "
-             "the robust one finds it. Baselines start from the first ground-truth box.", ""]
+             "the robust one finds it. Baselines start from the first ground-truth box. For an object under 90/90, "
+             "what loses the robust track the most frames (no track, before or after the track, in its gaps, on "
+             "another object, on nothing), or where it meets both, the most box area off the object "
+             "(trap_core.evaluation.losses).", ""]
     for res in results:
         methods, baselines = res["methods"], res["baselines"]
         lines += [f"## {Path(res['bag']).name} ({res['frames']} frames, {res['objects']} objects)", ""]
         header = ["object", *baselines, "TRAP paper L (box)", "TRAP paper L (cluster)", "TRAP paper B (cluster)",
-                  "TRAP robust (box)", "TRAP robust (cluster)"]
+                  "TRAP robust (box)", "TRAP robust (cluster)", "robust: loses most"]
         lines += ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
         paper, robust = methods["paper"], methods[STEPS[-1][0]]
         for o in range(res["objects"]):
@@ -177,12 +183,14 @@ def markdown(results: list[dict]) -> str:
             bp, br = paper["best_cluster"][o]
             cells += [f"{_pct(po['box_p'])}/{_pct(po['box_r'])}", f"{_pct(po['cluster_p'])}/{_pct(po['cluster_r'])}",
                       f"{_pct(bp)}/{_pct(br)}", f"{_pct(ro['box_p'])}/{_pct(ro['box_r'])}",
-                      f"{_pct(ro['cluster_p'])}/{_pct(ro['cluster_r'])}"]
+                      f"{_pct(ro['cluster_p'])}/{_pct(ro['cluster_r'])}", ro["loses_most"] or "-"]
             lines.append("| " + " | ".join(cells) + " |")
-        lines += ["", "| method | tracks | MOTA | IDF1 | HOTA | seconds (after graphs) |", "|---|---|---|---|---|---|"]
+        lines += ["", "| method | tracks | MOTA | IDF1 | HOTA | seconds (after graphs) | under 90/90, by what loses "
+                      "most |", "|---|---|---|---|---|---|---|"]
         for label, entry in methods.items():
+            causes = causes_line(o["loses_most"] for o in entry["objects"] if o["loses_most"])
             lines.append(f"| TRAP {label} | {entry['tracks']} | {entry['MOTA']:.2f} | {entry['IDF1']:.2f} | "
-                         f"{entry['HOTA']:.2f} | {entry['seconds']:.1f} |")
+                         f"{entry['HOTA']:.2f} | {entry['seconds']:.1f} | {causes} |")
         for label, entry in baselines.items():
             lines.append(f"| {label} (supervised) | {res['objects']} | {entry['MOTA']:.2f} | {entry['IDF1']:.2f} | "
                          f"{entry['HOTA']:.2f} | {entry['seconds']:.1f} |")

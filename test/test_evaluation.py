@@ -168,7 +168,7 @@ def test_evaluate_writes_a_report(tmp_path: Path, venv_bin: Path) -> None:
                              "+ steady box size", "+ where objects meet",
                              "robust (+ across the border)"]
     assert all(0 <= o["box_p"] <= 1 for m in methods.values() for o in m["objects"])
-    for entry in methods.values():  # a cause exactly where an object is under 90/90
+    for entry in [*methods.values(), *data[0]["baselines"].values()]:  # a cause exactly where under 90/90
         for o in entry["objects"]:
             under = min(o["box_p"], o["box_r"]) < 0.895
             assert bool(o["loses_most"]) == under and (not under or o["loses_most"] in (

@@ -84,11 +84,11 @@ def object_losses(track: Boxes | None, truth: Sequence[Boxes], obj: int) -> Obje
     return ObjectLosses(len(own), missed, area, off, *box_precision_recall(track, own))
 
 
-
 def causes_line(causes: Iterable[str]) -> str:
     """What loses the most, one entry per object under 90/90 (:attr:`ObjectLosses.cause`), as
     one line of counts, most first (``cause count, ...``; ``none`` where there are none)."""
     return ", ".join(f"{cause} {count}" for cause, count in Counter(causes).most_common()) or "none"
+
 
 def losses_chart(causes_by_set: dict[str, dict[str, int]], path: str | Path) -> Path:
     """Write a picture of what loses the most (:attr:`ObjectLosses.cause`) for the objects under

@@ -53,7 +53,7 @@ def test_an_objects_losses_add_up_to_what_its_precision_and_recall_miss() -> Non
     assert losses.missed == {"no track": 0, "before or after the track": 3, "in the track's gaps": 2,
                              "on another object": 2, "on nothing": 1}
     assert losses.off == {"on its object": 2 * 200.0, "on another object": 2 * 400.0, "on nothing": 400.0,
-                          "object not in view": 2 * 400.0}
+                          "while its object is out of view": 2 * 400.0}
     precision, recall = box_precision_recall(track, truth[0])
     assert (losses.precision, losses.recall) == (precision, recall)
     assert sum(losses.missed.values()) == pytest.approx((1 - recall) * losses.frames)
@@ -67,7 +67,7 @@ def test_an_objects_losses_add_up_to_what_its_precision_and_recall_miss() -> Non
     precise = object_losses({f: truth[0][f] for f in range(20)} | {f: (100.0, 10.0, 20.0, 20.0) for f in (20, 21, 22)},
                             truth, 0)  # every frame held, three boxes on object 1 after object 0 left
     assert precise.recall == 1 and precise.precision == pytest.approx(20 / 23)
-    assert precise.cause == "box object not in view"
+    assert precise.cause == "box while its object is out of view"
     nothing = object_losses(None, truth, 1)
     assert nothing.missed["no track"] == 30 and nothing.cause == "no track" and not nothing.good
 

@@ -23,7 +23,7 @@ from trap_core.evaluation.held_objects import NONE, Boxes, held_objects
 from trap_core.evaluation.paper_measures import box_precision_recall, centre_inside, shared_area
 
 MISSED = ("no track", "before or after the track", "in the track's gaps", "on another object", "on nothing")
-OFF = ("on its object", "on another object", "on nothing", "object not in view")
+OFF = ("on its object", "on another object", "on nothing", "while its object is out of view")
 GOOD = 0.895  # precision and recall at least this are 90 % as printed
 
 
@@ -75,7 +75,7 @@ def object_losses(track: Boxes | None, truth: Sequence[Boxes], obj: int) -> Obje
         size = box[2] * box[3]
         area += size
         if frame not in own:
-            off["object not in view"] += size
+            off["while its object is out of view"] += size
             continue
         outside = size - shared_area(box, own[frame])
         on = "on its object" if centre_inside(box, own[frame]) else (
@@ -113,7 +113,7 @@ def losses_chart(causes_by_set: dict[str, dict[str, int]], path: str | Path) -> 
     axes.set_xlabel("objects under 90/90, by what loses the most")
     axes.xaxis.get_major_locator().set_params(integer=True)
     if left.any():
-        axes.legend(loc="lower right", fontsize="small")
+        axes.legend(loc="best", fontsize="small")
     figure.tight_layout()
     path = Path(path)
     figure.savefig(path)

@@ -1685,6 +1685,27 @@ def test_lookalikes_that_traded_objects_where_they_crossed_get_them_back() -> No
     np.testing.assert_allclose(side_by_side[0].boxes, a)
 
 
+def test_three_lookalikes_that_traded_in_a_crowd_all_get_their_own_back() -> None:
+    """Three 40x30 look-alikes meet at one point in frame 50: P going right, Q left, R down.
+    Track 1 goes from P onto R in frame 45, track 3 from R onto P there and onto Q in frame 55,
+    track 2 from Q onto P in frame 55. No one pairing of two tracks can be put right until
+    another pair's is (one pass over the pairs leaves a trade); each track gets its own object."""
+    from trap_core.robust import swap_at_crossings
+    t = np.arange(100, dtype=float)[:, None]
+    size = np.tile([40.0, 30.0], (100, 1))
+    p, q, r = (np.hstack([250.0 + velocity * (t - 50) - size / 2, size])
+               for velocity in (np.array([2.0, 0.0]), np.array([-2.0, 0.0]), np.array([0.0, 2.0])))
+    first = np.vstack([p[:45], r[45:]])
+    second = np.vstack([q[:55], p[55:]])
+    third = np.vstack([r[:45], p[45:55], q[55:]])
+    frames = np.arange(100)
+    out = swap_at_crossings([_as_track(1, frames, first), _as_track(2, frames, second),
+                             _as_track(3, frames, third)], 100, 8, np.ones((3, 3), dtype=bool))
+    away = np.abs(t[:, 0] - 50) > 12            # where they crowd, any box will do
+    for track, own in zip(out, (p, q, r)):
+        np.testing.assert_allclose(track.boxes[away], own[away])
+
+
 def test_lookalikes_traded_where_one_track_held_a_blend_of_both_get_them_back() -> None:
     """Two look-alikes cross at frame 50. Track 1 goes on with the other object at once; track 2
     lingers for twelve frames on a blend of both, nearer its own (no line right after a cut

@@ -101,9 +101,22 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
     exchange the tracks only if somewhere in it their boxes overlap by at least ``min_iou`` (may
     hold the same object): boxes that stay apart each kept their own object, and a trade between
     them would be a jump that the test at each frame looks for. Two equal boxes overlap by
-    ``BLEND_IOU`` when their centres are about half a box apart.
+    ``BLEND_IOU`` when their centres are about half a box apart. The pairs are looked at again
+    until a pass over them exchanges nothing: an exchange changes what both tracks hold after
+    its cut, and so their meetings with the others (where three look-alikes crowd, one pair's
+    trade may show only once another pair's is put right).
     """
     out = list(tracks)
+    for _ in range(len(out) * (len(out) - 1) // 2):  # a bound; the passes end at one that exchanges nothing
+        if not _swap_pass(out, n_frames, window, alike, min_iou):
+            break
+    return out
+
+
+def _swap_pass(out: list[Track], n_frames: int, window: int, alike: np.ndarray, min_iou: float) -> bool:
+    """One pass of :func:`swap_at_crossings` over every pair of ``out`` (changed in place);
+    whether it exchanged any continuations."""
+    exchanged_any = False
     boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
     centres = box_centres(boxes)
     sizes = np.array([usual_size(t) if len(t) else 0.0 for t in out])
@@ -130,9 +143,10 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
                 if cut is None:
                     continue
                 out[a], out[b] = _exchanged(out[a], out[b], cut)
+                exchanged_any = True
                 for path in (boxes, centres):
                     path[[a, b], cut:] = path[[b, a], cut:]
-    return out
+    return exchanged_any
 
 
 def _one_object_either_side(first: np.ndarray, second: np.ndarray, cut: int, first_line: int, last_line: int

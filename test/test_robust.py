@@ -1706,6 +1706,27 @@ def test_three_lookalikes_that_traded_in_a_crowd_all_get_their_own_back() -> Non
         np.testing.assert_allclose(track.boxes[away], own[away])
 
 
+def test_three_lookalikes_whose_tracks_left_a_crowd_as_a_cycle_get_their_own_back() -> None:
+    """Three 40x30 look-alikes crowd around frame 50: P going right and up passes 14 px from
+    where Q (left and a little up) and R (down) meet. In frame 44 each track goes on with the
+    next one's object (P's with Q, Q's with R, R's with P): exchanging the continuations of any
+    two tracks puts at most one right, and no such exchange passes alone; the three are turned a
+    step around, and each track holds its own object again."""
+    from trap_core.robust import swap_at_crossings
+    t = np.arange(100, dtype=float)[:, None]
+    size = np.tile([40.0, 30.0], (100, 1))
+    p, q, r = (np.hstack([250.0 + offset + velocity * (t - 50) - size / 2, size])
+               for velocity, offset in ((np.array([2.0, -2.0]), 10.0), (np.array([-2.0, -1.0]), 0.0),
+                                        (np.array([0.0, 3.0]), 0.0)))
+    frames = np.arange(100)
+    tracks = [_as_track(1, frames, np.vstack([p[:44], q[44:]])), _as_track(2, frames, np.vstack([q[:44], r[44:]])),
+              _as_track(3, frames, np.vstack([r[:44], p[44:]]))]
+    out = swap_at_crossings(tracks, 100, 8, np.ones((3, 3), dtype=bool))
+    away = np.abs(t[:, 0] - 50) > 14            # where they crowd, any box will do
+    for track, own in zip(out, (p, q, r)):
+        np.testing.assert_allclose(track.boxes[away], own[away])
+
+
 def test_lookalikes_traded_where_one_track_held_a_blend_of_both_get_them_back() -> None:
     """Two look-alikes cross at frame 50. Track 1 goes on with the other object at once; track 2
     lingers for twelve frames on a blend of both, nearer its own (no line right after a cut
@@ -1726,6 +1747,28 @@ def test_lookalikes_traded_where_one_track_held_a_blend_of_both_get_them_back() 
     away = np.abs(t[40:] - 56) > 6
     np.testing.assert_allclose(out[0].boxes[away], right[40:][away])
     np.testing.assert_allclose(out[1].boxes[away], left[40:][away])
+
+
+def test_lookalikes_exchanged_halfway_across_a_blend_are_not_exchanged_back() -> None:
+    """Two 40x30 look-alikes cross near frame 50 (P left, Q right and down); in frame 51 track 1
+    goes on with Q, and track 2 holds a blend of both for twelve frames (0.6 of Q) before it
+    takes P. The exchange is made halfway across the blend, which leaves some of its frames on
+    the wrong track; a later pass over the pairs would read that seam as a trade and exchange
+    the tracks back, and the next one again. No pair is cut again near a cut it was exchanged
+    at, and each track ends with its own object."""
+    from trap_core.robust import swap_at_crossings
+    t = np.arange(100, dtype=float)[:, None]
+    size = np.tile([40.0, 30.0], (100, 1))
+    p = np.hstack([np.array([240.0, 250.0]) + np.array([-2.0, 0.0]) * (t - 50) - size / 2, size])
+    q = np.hstack([np.array([250.0, 240.0]) + np.array([3.0, 2.0]) * (t - 50) - size / 2, size])
+    blend = 0.6 * q + 0.4 * p
+    frames = np.arange(100)
+    tracks = [_as_track(1, frames, np.vstack([p[:51], q[51:]])),
+              _as_track(2, frames, np.vstack([q[:51], blend[51:63], p[63:]]))]
+    out = swap_at_crossings(tracks, 100, 8, np.ones((2, 2), dtype=bool))
+    away = (t[:, 0] < 43) | (t[:, 0] > 71)
+    np.testing.assert_allclose(out[0].boxes[away], p[away])
+    np.testing.assert_allclose(out[1].boxes[away], q[away])
 
 
 def test_lookalikes_that_turn_where_they_pass_keep_their_tracks_if_their_boxes_never_blend() -> None:

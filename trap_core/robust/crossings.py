@@ -12,6 +12,7 @@ tracks.
 """
 from __future__ import annotations
 
+import itertools
 from collections.abc import Sequence
 
 import numpy as np
@@ -104,18 +105,27 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
     ``BLEND_IOU`` when their centres are about half a box apart. The pairs are looked at again
     until a pass over them exchanges nothing: an exchange changes what both tracks hold after
     its cut, and so their meetings with the others (where three look-alikes crowd, one pair's
-    trade may show only once another pair's is put right).
+    trade may show only once another pair's is put right). A pair is not cut again within
+    ``window`` frames of a cut it was exchanged at: the lines there read that seam (an exchange
+    made halfway across a blend leaves its frames to either track), and two cuts a few frames
+    apart would exchange the tracks back and forth from pass to pass. Where three look-alikes
+    leave a crowd each on the next one's object, no exchange of two tracks puts any of them right
+    (:func:`_exchange_cycles`).
     """
     out = list(tracks)
-    for _ in range(len(out) * (len(out) - 1) // 2):  # a bound; the passes end at one that exchanges nothing
-        if not _swap_pass(out, n_frames, window, alike, min_iou):
+    seams: dict[tuple[int, int], list[int]] = {}
+    for _ in range(2 * len(out) ** 2):  # a bound; the passes end at one that exchanges nothing
+        if not _swap_pass(out, n_frames, window, alike, min_iou, seams):
             break
+    _exchange_cycles(out, n_frames, window, alike, min_iou)
     return out
 
 
-def _swap_pass(out: list[Track], n_frames: int, window: int, alike: np.ndarray, min_iou: float) -> bool:
-    """One pass of :func:`swap_at_crossings` over every pair of ``out`` (changed in place);
-    whether it exchanged any continuations."""
+def _swap_pass(out: list[Track], n_frames: int, window: int, alike: np.ndarray, min_iou: float,
+               seams: dict[tuple[int, int], list[int]]) -> bool:
+    """One pass of :func:`swap_at_crossings` over every pair of ``out`` (changed in place), away
+    from the ``seams`` (per pair of slots, the cuts exchanged so far; added to); whether it
+    exchanged any continuations."""
     exchanged_any = False
     boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
     centres = box_centres(boxes)
@@ -130,6 +140,8 @@ def _swap_pass(out: list[Track], n_frames: int, window: int, alike: np.ndarray, 
                 blended = np.nan_to_num(box_iou(boxes[a, start:stop], boxes[b, start:stop])).max() >= min_iou
                 found = _best_cut(centres[a], centres[b], range(start, stop + 1), window, TURN * size,
                                   window if blended else 0)
+                if found is not None and any(abs(found[0] - seam) <= window for seam in seams.get((a, b), ())):
+                    found = None  # the cut's lines read an earlier exchange's seam: the whole meeting tells
                 if found is not None and _one_object_either_side(boxes[a], boxes[b], found[0], *found[1]):
                     found = None  # the cut's lines read one object: the whole meeting tells
                 kept, exchanged, apart = _across_meeting(centres[a], centres[b], start, stop, window)
@@ -144,9 +156,76 @@ def _swap_pass(out: list[Track], n_frames: int, window: int, alike: np.ndarray, 
                     continue
                 out[a], out[b] = _exchanged(out[a], out[b], cut)
                 exchanged_any = True
+                seams.setdefault((a, b), []).append(cut)
                 for path in (boxes, centres):
                     path[[a, b], cut:] = path[[b, a], cut:]
     return exchanged_any
+
+
+def _exchange_cycles(out: list[Track], n_frames: int, window: int, alike: np.ndarray, min_iou: float) -> None:
+    """Where three look-alikes crowd, their tracks' continuations turned a step around (changed in
+    place in ``out``) if they left the crowd as a cycle, each on the next one's object.
+
+    Three tracks crowd while at least two of their three pairs meet (closer than the smaller usual
+    size of the two, as in :func:`swap_at_crossings`). Each track's straight line over ``window``
+    frames before the crowd and after it gives, for every track and every continuation, how much
+    taking it breaks the motion (:func:`_break`, the jump spread over the window and the crowd). The
+    cycle that breaks them least is taken, at the crowd's middle frame, where it breaks the three
+    motions by at most 1.5 ``TURN`` times the smallest size per frame (what two tracks may break by
+    in :func:`_gain`, for three), the tracks' own continuations by more and by at least twice as
+    much, each track's line before lies within the size of its new continuation's line after (no
+    jump), and each track's boxes overlap by ``min_iou`` somewhere in the crowd with those of the
+    track whose continuation it takes (a trade needs a blend). Only tracks ``alike`` to each other
+    are turned.
+    """
+    boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
+    centres = box_centres(boxes)
+    sizes = np.array([usual_size(t) if len(t) else 0.0 for t in out])
+    meet = {(i, j): np.linalg.norm(centres[i] - centres[j], axis=1) < min(sizes[i], sizes[j])
+            for i, j in itertools.combinations(range(len(out)), 2) if alike[i, j]}
+    for trio in itertools.combinations(range(len(out)), 3):
+        pairs = [pair for pair in itertools.combinations(trio, 2) if pair in meet]
+        if len(pairs) < 3:
+            continue
+        crowded = np.sum([meet[pair] for pair in pairs], axis=0) >= 2
+        size = float(sizes[list(trio)].min())
+        for start, stop in zip(*(bounds.tolist() for bounds in flag_runs(crowded))):
+            cycle = _best_cycle(boxes[list(trio)], centres[list(trio)], start, stop, window, size, min_iou)
+            if cycle is None:
+                continue
+            middle = (start + stop) // 2
+            for x, y in ((0, cycle[0]), (cycle[0], cycle[cycle[0]])):  # two exchanges make the turn
+                a, b = trio[x], trio[y]
+                out[a], out[b] = _exchanged(out[a], out[b], middle)
+                for path in (boxes, centres):
+                    path[[a, b], middle:] = path[[b, a], middle:]
+
+
+def _best_cycle(boxes: np.ndarray, centres: np.ndarray, start: int, stop: int, window: int, size: float,
+                min_iou: float) -> tuple[int, int, int] | None:
+    """For three tracks' box and centre paths (3, n_frames, ...) that crowd over frames
+    ``start``-``stop``: the cycle (``cycle[i]``: whose continuation track ``i`` takes) that
+    :func:`_exchange_cycles` takes, or None."""
+    n_frames = centres.shape[1]
+    lines = [[straight_line(path, frames) for path in centres]
+             for frames in (np.arange(max(start - window, 0), start), np.arange(stop, min(stop + window, n_frames)))]
+    if any(line is None for side in lines for line in side):
+        return None
+    before, after = (np.array(side, dtype=float) for side in lines)
+    middle = (start + stop) // 2
+    breaks = _break(before[:, None], after[None, :], middle, window + stop - start)  # before i, after j
+    kept, least = float(np.trace(breaks)), 1.5 * TURN * size
+    best, best_turned = None, np.inf
+    for cycle in ((1, 2, 0), (2, 0, 1)):
+        turned = float(sum(breaks[i, cycle[i]] for i in range(3)))
+        if not (turned <= least < kept and 2 * turned <= kept and turned < best_turned):
+            continue
+        if max(float(_jump(before[i], after[cycle[i]], middle)) for i in range(3)) > size:
+            continue
+        if all(np.nan_to_num(box_iou(boxes[i, start:stop], boxes[cycle[i], start:stop])).max() >= min_iou
+               for i in range(3)):
+            best, best_turned = cycle, turned
+    return best
 
 
 def _one_object_either_side(first: np.ndarray, second: np.ndarray, cut: int, first_line: int, last_line: int

@@ -5,7 +5,8 @@ paths of :func:`trap_core.mining` can leave the meeting each on the other object
 then hold one object before and the other after: no stretch is repeated (that is
 :func:`trap_core.robust.drop_shared_stretches`' case), each track just turns and jumps where
 the objects meet. :func:`swap_at_crossings` gives each track the other's continuation where
-that makes both motions go on as they were going. Only look-alikes trade
+that makes both motions go on as they were going (and, where three crowd and leave it as a
+cycle, turns their continuations a step around). Only look-alikes trade
 (:func:`lookalike_tracks`: the same structures, or boxes of one size): where the objects differ,
 their patterns already told them apart, and two objects that meet and both turn back keep their
 tracks.

@@ -128,9 +128,7 @@ def _swap_pass(out: list[Track], n_frames: int, window: int, alike: np.ndarray, 
     from the ``seams`` (per pair of slots, the cuts exchanged so far; added to); whether it
     exchanged any continuations."""
     exchanged_any = False
-    boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
-    centres = box_centres(boxes)
-    sizes = np.array([usual_size(t) if len(t) else 0.0 for t in out])
+    boxes, centres, sizes = _paths(out, n_frames)
     for a in range(len(out)):
         for b in range(a + 1, len(out)):
             if not alike[a, b]:
@@ -155,11 +153,9 @@ def _swap_pass(out: list[Track], n_frames: int, window: int, alike: np.ndarray, 
                         cut = None
                 if cut is None:
                     continue
-                out[a], out[b] = _exchanged(out[a], out[b], cut)
+                _exchange_at(out, (boxes, centres), a, b, cut)
                 exchanged_any = True
                 seams.setdefault((a, b), []).append(cut)
-                for path in (boxes, centres):
-                    path[[a, b], cut:] = path[[b, a], cut:]
     return exchanged_any
 
 
@@ -179,9 +175,7 @@ def _exchange_cycles(out: list[Track], n_frames: int, window: int, alike: np.nda
     track whose continuation it takes (a trade needs a blend). Only tracks ``alike`` to each other
     are turned.
     """
-    boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
-    centres = box_centres(boxes)
-    sizes = np.array([usual_size(t) if len(t) else 0.0 for t in out])
+    boxes, centres, sizes = _paths(out, n_frames)
     meet = {(i, j): np.linalg.norm(centres[i] - centres[j], axis=1) < min(sizes[i], sizes[j])
             for i, j in itertools.combinations(range(len(out)), 2) if alike[i, j]}
     for trio in itertools.combinations(range(len(out)), 3):
@@ -194,12 +188,8 @@ def _exchange_cycles(out: list[Track], n_frames: int, window: int, alike: np.nda
             cycle = _best_cycle(boxes[list(trio)], centres[list(trio)], start, stop, window, size, min_iou)
             if cycle is None:
                 continue
-            middle = (start + stop) // 2
             for x, y in ((0, cycle[0]), (cycle[0], cycle[cycle[0]])):  # two exchanges make the turn
-                a, b = trio[x], trio[y]
-                out[a], out[b] = _exchanged(out[a], out[b], middle)
-                for path in (boxes, centres):
-                    path[[a, b], middle:] = path[[b, a], middle:]
+                _exchange_at(out, (boxes, centres), trio[x], trio[y], (start + stop) // 2)
 
 
 def _best_cycle(boxes: np.ndarray, centres: np.ndarray, start: int, stop: int, window: int, size: float,
@@ -331,6 +321,21 @@ def _jump(before: np.ndarray, after: np.ndarray, cut: np.ndarray | int) -> np.nd
     (v0, p0), (v1, p1) = np.moveaxis(before, -2, 0), np.moveaxis(after, -2, 0)
     at = np.asarray(cut, dtype=float)[..., None] - 0.5
     return np.linalg.norm((p1 + v1 * at) - (p0 + v0 * at), axis=-1)
+
+
+def _paths(out: Sequence[Track], n_frames: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The tracks' box paths (T, n_frames, 4; NaN where a track has no box), their centres and
+    the tracks' usual sizes (0 for an empty track): what the meetings are read from."""
+    boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
+    return boxes, box_centres(boxes), np.array([usual_size(t) if len(t) else 0.0 for t in out])
+
+
+def _exchange_at(out: list[Track], paths: tuple[np.ndarray, ...], a: int, b: int, cut: int) -> None:
+    """Tracks ``a`` and ``b`` of ``out`` with their continuations from ``cut`` on exchanged, and
+    so their ``paths`` (per track, along frames), all in place."""
+    out[a], out[b] = _exchanged(out[a], out[b], cut)
+    for path in paths:
+        path[[a, b], cut:] = path[[b, a], cut:]
 
 
 def _exchanged(a: Track, b: Track, cut: int) -> tuple[Track, Track]:

@@ -2218,6 +2218,32 @@ def test_a_track_that_takes_over_where_another_ended_is_appended_to_it() -> None
     assert len(join_handovers(tracks, 100, 12, 40.0)) == 4
 
 
+def test_a_track_that_jumps_to_a_lookalike_across_a_gap_hands_each_object_to_the_track_that_goes_on() -> None:
+    """Objects A (y 200) and B (y 320) move right side by side. Track 1 holds A in frames 0-59
+    and, after a gap, B from frame 80; track 2 holds A from frame 60, where track 1's motion puts
+    it, and track 3 holds B up to frame 79. Track 1 is cut at its gap: A's track is track 1's
+    first piece and track 2, B's is track 3 and track 1's second piece. Where instead A itself
+    turns down in the gap and track 1 comes back on it (off its line), while track 2 holds it
+    in frames 60-110, track 1 is left whole: track 2 repeats what it holds after the gap."""
+    from trap_core.robust import join_handovers
+    t = np.arange(150, dtype=float)
+    a = np.column_stack([100 + 2 * t, np.full(150, 200.0), np.full(150, 40.0), np.full(150, 30.0)])
+    b = a + [0.0, 120.0, 0.0, 0.0]
+    frames = np.arange(150)
+    jumping = _as_track(1, np.r_[frames[:60], frames[80:]], np.vstack([a[:60], b[80:]]))
+    out = join_handovers([jumping, _as_track(2, frames[60:], a[60:]), _as_track(3, frames[:80], b[:80])],
+                         150, 12, 40.0)
+    assert sorted(len(t) for t in out) == [150, 150]
+    for track in out:
+        np.testing.assert_allclose(track.boxes[:, 1], track.boxes[0, 1])  # one object from start to end
+    turned = a.copy()
+    turned[60:, 0] = a[59, 0]
+    turned[60:, 1] = 200.0 + 2 * (t[60:] - 59)
+    back = _as_track(1, np.r_[frames[:60], frames[80:]], np.vstack([a[:60], turned[80:]]))
+    out = join_handovers([back, _as_track(2, frames[60:111], turned[60:111])], 150, 12, 40.0)
+    assert [len(t) for t in out] == [130, 51]
+    np.testing.assert_allclose(out[0].boxes, back.boxes)
+
 def test_a_track_that_comes_back_on_the_motion_after_a_gap_is_appended_within_max_gap() -> None:
     """Track 1 holds frames 0-59 of an object moving right; nothing holds it in frames 60-89
     (its regions merged with the ground), and track 2 holds it from frame 90, where track 1's

@@ -187,54 +187,105 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
     began: of its last ``window`` frames before the later one starts, those after the last box
     within ``reach`` of the later track's line (through its first ``window`` centres, extended
     back) go. The later track's boxes (but those on a third track's object) are appended from its
-    start. Ids are renumbered 1.. in order.
+    start.
+
+    A track also ends, for this rule, before a gap where it jumps (:func:`_handover_ends`): where
+    a later track takes its object over there, it is cut at the gap, continued by that track,
+    and its part after the gap is a track of its own (at most as many cuts as tracks). Not where
+    the later track repeats a box of that part (IoU at least ``min_iou``): its object turned
+    while its patterns were missed, and the track came back on it. Ids are renumbered 1.. in order.
     """
     out = list(tracks)
+    cuts_left = len(out)  # a cut adds a track that a later join may cut again: bounded
     slot = 0
     while slot < len(out):
-        current = out[slot]
-        end = int(current.frames[-1])
-        line = _motion_at(current, end, window) if end < n_frames - window else None
-        if line is None:
+        joined = None
+        for end in _handover_ends(out[slot], n_frames, window, reach, cuts_left > 0):
+            before, after = in_rows(out[slot], out[slot].frames <= end), in_rows(out[slot], out[slot].frames > end)
+            trial = out[:slot] + [before] + out[slot + 1:] + ([after] if len(after) else [])
+            joined, taker = _taken_over(trial, slot, n_frames, window, reach, min_iou, max_gap)
+            if joined is not None and len(after) and repeats_others(taker, [after], min_iou).any():
+                joined = None  # the track after its gap is on the object taken over: one object all along
+            if joined is not None:
+                cuts_left -= bool(len(after))
+                break
+        if joined is None:
             slot += 1
             continue
-        velocity, origin = line
-        best, best_error, best_rows = None, reach, None
-        nearby = []  # (track, its rows from its start) whose first counted box is near the last box
-        latest = end + max(window, max_gap)  # where a later track's first counted frame may be at most
-        for other, later in enumerate(out):
-            if other == slot or int(later.frames[0]) > latest:
-                continue
-            thirds = [t for k, t in enumerate(out) if k not in (slot, other)]
-            on_known = repeats_others(later, [t for k, t in enumerate(out) if k != other], ANY_OVERLAP)
-            if np.any(~on_known & (later.frames < end - window)):
-                continue
-            own = ~repeats_others(later, thirds, min_iou)
-            rows = (later.frames > end) & own
-            after = np.flatnonzero(rows)
-            if after.size < window or later.frames[after[0]] > latest:
-                continue
-            first = after[:window]
-            centres = box_centres(later.boxes[first])
-            predicted = origin + velocity * later.frames[first][:, None]
-            error = float(np.median(np.linalg.norm(centres - predicted, axis=1)))
-            if error <= best_error:
-                best, best_error, best_rows = other, error, rows
-            elif (later.frames[after[0]] <= end + window
-                  and np.linalg.norm(centres[0] - box_centres(current.boxes[-1:])[0]) <= reach):
-                nearby.append((other, own))
-        if best is None and len(nearby) == 1:
-            best, best_rows = nearby[0]
-            current = in_rows(current, current.frames < _wandering_from(current, in_rows(out[best], best_rows),
-                                                                         window, reach))
-        if best is None:
-            slot += 1
-            continue
-        follow = in_rows(out[best], best_rows)
-        out[slot] = with_frames(current, follow.frames, follow.boxes, follow.score, follow.points)
-        del out[best]
+        out = joined
         slot = 0  # the joined track may now be followed by another
     return [dataclasses.replace(t, track_id=i) for i, t in enumerate(out, start=1)]
+
+
+def _handover_ends(track: Track, n_frames: int, window: int, reach: float, with_gaps: bool) -> list[int]:
+    """Frames where :func:`join_handovers` looks for a track that takes the ``track``'s object
+    over: its last frame and, ``with_gaps``, the last frame before each gap of more than
+    ``window`` frames after which it jumps: its first ``window`` boxes after the gap are over
+    ``reach`` px (median) from where its motion before the gap puts them, and the first over
+    ``reach`` px from its last box before (a look-alike's cluster can hold one object up to the
+    gap and the other after it, while a track of its own carries each object's motion on)."""
+    ends = []
+    gaps = np.flatnonzero(np.diff(track.frames) > window) if with_gaps else np.zeros(0, dtype=int)
+    for row in gaps.tolist():
+        end = int(track.frames[row])
+        line = _motion_at(track, end, window) if end < n_frames - window else None
+        if line is None:
+            continue
+        velocity, origin = line
+        resumed = np.arange(row + 1, min(row + 1 + window, len(track)))
+        centres = box_centres(track.boxes[resumed])
+        off_line = np.median(np.linalg.norm(centres - (origin + velocity * track.frames[resumed][:, None]), axis=1))
+        if off_line > reach and np.linalg.norm(centres[0] - box_centres(track.boxes[row:row + 1])[0]) > reach:
+            ends.append(end)
+    return ends + [int(track.frames[-1])]
+
+
+def _taken_over(out: list[Track], slot: int, n_frames: int, window: int, reach: float, min_iou: float,
+                max_gap: int) -> tuple[list[Track] | None, Track | None]:
+    """``out`` with the track ``slot`` continued by the track that takes its object over where it
+    ends, as :func:`join_handovers` tells it, and that track dropped, and that track; None and None
+    where none takes it over."""
+    current = out[slot]
+    end = int(current.frames[-1])
+    line = _motion_at(current, end, window) if end < n_frames - window else None
+    if line is None:
+        return None, None
+    velocity, origin = line
+    best, best_error, best_rows = None, reach, None
+    nearby = []  # (track, its rows from its start) whose first counted box is near the last box
+    latest = end + max(window, max_gap)  # where a later track's first counted frame may be at most
+    for other, later in enumerate(out):
+        if other == slot or int(later.frames[0]) > latest:
+            continue
+        thirds = [t for k, t in enumerate(out) if k not in (slot, other)]
+        on_known = repeats_others(later, [t for k, t in enumerate(out) if k != other], ANY_OVERLAP)
+        if np.any(~on_known & (later.frames < end - window)):
+            continue
+        own = ~repeats_others(later, thirds, min_iou)
+        rows = (later.frames > end) & own
+        after = np.flatnonzero(rows)
+        if after.size < window or later.frames[after[0]] > latest:
+            continue
+        first = after[:window]
+        centres = box_centres(later.boxes[first])
+        predicted = origin + velocity * later.frames[first][:, None]
+        error = float(np.median(np.linalg.norm(centres - predicted, axis=1)))
+        if error <= best_error:
+            best, best_error, best_rows = other, error, rows
+        elif (later.frames[after[0]] <= end + window
+              and np.linalg.norm(centres[0] - box_centres(current.boxes[-1:])[0]) <= reach):
+            nearby.append((other, own))
+    if best is None and len(nearby) == 1:
+        best, best_rows = nearby[0]
+        current = in_rows(current, current.frames < _wandering_from(current, in_rows(out[best], best_rows),
+                                                                     window, reach))
+    if best is None:
+        return None, None
+    follow = in_rows(out[best], best_rows)
+    joined = list(out)
+    joined[slot] = with_frames(current, follow.frames, follow.boxes, follow.score, follow.points)
+    del joined[best]
+    return joined, out[best]
 
 
 def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, candidates: np.ndarray, n_frames: int,

@@ -13,7 +13,8 @@ carried on, the cluster starts later, out of the other's box, and is taken from 
 When such a cluster was long enough to be selected, the object's path after the meeting is a
 track of its own, often starting on the other object (for as long as the two are in one place,
 a few frames where they cross, longer where they travel together) before it follows its own:
-:func:`join_handovers` makes the two tracks one.
+:func:`join_handovers` makes the two tracks one. It also cuts a track at a gap after which it
+jumps to a look-alike, where another track goes on with its object from there.
 
 A track's cluster can also hold one object before such a meeting and the other after it (or the
 reverse): over a stretch it repeats the other object's track, while its own object has no track.

@@ -232,11 +232,10 @@ def _handover_ends(track: Track, n_frames: int, window: int, reach: float, with_
         line = _motion_at(track, end, window) if end < n_frames - window else None
         if line is None:
             continue
-        velocity, origin = line
         resumed = np.arange(row + 1, min(row + 1 + window, len(track)))
-        centres = box_centres(track.boxes[resumed])
-        off_line = np.median(np.linalg.norm(centres - (origin + velocity * track.frames[resumed][:, None]), axis=1))
-        if off_line > reach and np.linalg.norm(centres[0] - box_centres(track.boxes[row:row + 1])[0]) > reach:
+        first_back = box_centres(track.boxes[row + 1:row + 2])[0]
+        if (np.median(_off_line(track, resumed, line)) > reach
+                and np.linalg.norm(first_back - box_centres(track.boxes[row:row + 1])[0]) > reach):
             ends.append(end)
     return ends + [int(track.frames[-1])]
 
@@ -251,7 +250,6 @@ def _taken_over(out: list[Track], slot: int, n_frames: int, window: int, reach: 
     line = _motion_at(current, end, window) if end < n_frames - window else None
     if line is None:
         return None, None
-    velocity, origin = line
     best, best_error, best_rows = None, reach, None
     nearby = []  # (track, its rows from its start) whose first counted box is near the last box
     latest = end + max(window, max_gap)  # where a later track's first counted frame may be at most
@@ -267,14 +265,12 @@ def _taken_over(out: list[Track], slot: int, n_frames: int, window: int, reach: 
         after = np.flatnonzero(rows)
         if after.size < window or later.frames[after[0]] > latest:
             continue
-        first = after[:window]
-        centres = box_centres(later.boxes[first])
-        predicted = origin + velocity * later.frames[first][:, None]
-        error = float(np.median(np.linalg.norm(centres - predicted, axis=1)))
+        error = float(np.median(_off_line(later, after[:window], line)))
         if error <= best_error:
             best, best_error, best_rows = other, error, rows
         elif (later.frames[after[0]] <= end + window
-              and np.linalg.norm(centres[0] - box_centres(current.boxes[-1:])[0]) <= reach):
+              and np.linalg.norm(box_centres(later.boxes[after[:1]])[0] - box_centres(current.boxes[-1:])[0])
+              <= reach):
             nearby.append((other, own))
     if best is None and len(nearby) == 1:
         best, best_rows = nearby[0]
@@ -431,10 +427,8 @@ def _wandering_from(ending: Track, later: Track, window: int, reach: float) -> i
     line = _line_through(later, np.arange(start, start + window))
     if line is None:
         return start
-    velocity, origin = line
     before = np.flatnonzero((ending.frames < start) & (ending.frames >= start - window))[::-1]
-    off = np.linalg.norm(box_centres(ending.boxes[before]) - (origin + velocity * ending.frames[before][:, None]),
-                         axis=1) > reach
+    off = _off_line(ending, before, line) > reach
     kept = np.flatnonzero(~off)  # the first box (going back) near the line ends the tail
     tail = before[:kept[0]] if kept.size else before
     return int(ending.frames[tail[-1]]) if tail.size else start
@@ -456,6 +450,13 @@ def _out_from_hiding(hiding: Sequence[Track], position: np.ndarray, edge: int, n
             centre = box_centres(track.boxes[np.searchsorted(track.frames, nearest)][None])[0]
             distances.append(float(np.linalg.norm(position - centre)))
     return min(distances)
+
+
+def _off_line(track: Track, rows: np.ndarray, line: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+    """Per row of ``rows``: how far the track's box centre lies from where the straight ``line``
+    (velocity, origin: :func:`_line_through`) puts it in that row's frame."""
+    velocity, origin = line
+    return np.linalg.norm(box_centres(track.boxes[rows]) - (origin + velocity * track.frames[rows][:, None]), axis=1)
 
 
 def _motion_at(track: Track, end: int, window: int) -> tuple[np.ndarray, np.ndarray] | None:

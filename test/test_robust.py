@@ -815,6 +815,44 @@ def test_undersized_boxes_away_from_the_border_get_the_usual_size_around_them() 
     np.testing.assert_allclose(kept, leaving)
 
 
+def test_a_box_edge_that_jumps_for_a_few_frames_goes_back_on_its_line() -> None:
+    """A 40x30 box moving right and down with a pixel of jitter: for two frames a region below the
+    object is merged in (its bottom edge 20 px low), for three its left part is lost (its left edge
+    10 px in). Those edges go back on the line of their neighbours; every other edge, jitter
+    included, stays as it was."""
+    from trap_core.robust import steady_edges
+    frames = np.r_[np.arange(30), np.arange(33, 80)]  # a gap of two frames
+    truth = np.column_stack([100 + 2.0 * frames, 200 + 0.5 * frames, np.full(frames.size, 40.0),
+                             np.full(frames.size, 30.0)])
+    seen = truth + np.random.default_rng(3).uniform(-0.5, 0.5, truth.shape)
+    merged, lost = np.isin(frames, [20, 21]), np.isin(frames, [45, 46, 47])
+    seen[merged, 3] += 20.0
+    seen[lost, 0] += 10.0
+    seen[lost, 2] -= 10.0
+    out = steady_edges(_as_track(1, frames, seen), half=12).boxes
+    edges = lambda b: np.column_stack([b[:, :2], b[:, :2] + b[:, 2:]])  # noqa: E731
+    moved = np.zeros((frames.size, 4), dtype=bool)
+    moved[merged, 3] = moved[lost, 0] = True
+    np.testing.assert_array_equal(edges(out)[~moved], edges(seen)[~moved])
+    np.testing.assert_allclose(edges(out)[moved], edges(truth)[moved], atol=1.5)
+
+
+def test_box_edges_that_move_steadily_or_step_for_good_are_kept() -> None:
+    """A zoom (the box 1 % larger each frame), an object leaving through the border (its box cut
+    to 3 px), and a box that is 30 px taller from a frame on (the object seen whole from there):
+    each edge is where its neighbours put it, or moves their line with it."""
+    from trap_core.robust import steady_edges
+    frames = np.arange(120)
+    size = np.column_stack([40 * 1.01 ** frames, 30 * 1.01 ** frames])
+    zoom = np.column_stack([320 - size / 2, size])
+    leaving = np.column_stack([500 + 1.2 * frames, np.full(120, 200.0), np.full(120, 40.0), np.full(120, 30.0)])
+    leaving[:, 2] = np.clip(640 - leaving[:, 0], 3.0, 40.0)
+    taller = np.column_stack([100 + frames, np.full(120, 200.0), np.full(120, 40.0), np.full(120, 30.0)])
+    taller[60:, 3] += 30.0
+    for boxes in (zoom, leaving, taller):
+        np.testing.assert_array_equal(steady_edges(_as_track(1, frames, boxes), half=12).boxes, boxes)
+
+
 def test_a_piece_whose_larger_boxes_are_of_one_size_takes_them_as_its_whole_object() -> None:
     """A 40x40 disc whose body merges with the ground in 60 % of the frames: there its track's box
     holds only its inner panels (20x10, 15 px right of and 10 px below the body's centre), where its

@@ -34,7 +34,8 @@ from trap_core.progress import Progress  # noqa: E402
 _ROBUST_OFF = dict(link_reach=0.0, label_memory=False, min_speed=0.0, image_motion=False, steady_steps=0.0,
                    own_region=False, one_object=False, rejoin=False, rejoin_colour_reach=0.0, core_share=0.0,
                    still_regions=False, grow=False, edge_lines=False, fill_gaps=False, one_track=False,
-                   own_frames=False, size_jump=0.0, groups=False, to_border=False)
+                   own_frames=False, size_jump=0.0, groups=False, to_border=False,
+                   steady_edges=False)
 _ROBUST_STEPS = (("+ steps within reach", "link_reach"), ("+ label memory", "label_memory"),
                  ("+ camera motion", "min_speed"), ("+ camera motion from the images", "image_motion"),
                  ("+ steady steps", "steady_steps"), ("+ own region moves", "own_region"),
@@ -46,7 +47,8 @@ _ROBUST_STEPS = (("+ steps within reach", "link_reach"), ("+ label memory", "lab
                  ("+ one track per object", "one_track"),
                  ("+ own frames, twin clusters", "own_frames"),
                  ("+ steady box size", "size_jump"),
-                 ("+ where objects meet", "groups"), ("robust (+ across the border)", "to_border"))
+                 ("+ where objects meet", "groups"), ("+ across the border", "to_border"),
+                 ("robust (+ steady box edges)", "steady_edges"))
 
 
 def _ablation() -> tuple[tuple[str, dict], ...]:

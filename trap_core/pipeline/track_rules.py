@@ -24,7 +24,7 @@ from trap_core.robust import (GroupBoxes, colour_overlap, colour_shares, continu
                               drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes, join_handovers,
                               join_returns, join_spare_returns, keep_one_size, lookalike_tracks,
                               mend_shared_stretches, merge_duplicates, repeats_others, separate_groups,
-                              swap_at_crossings, through_groups)
+                              steady_edges, swap_at_crossings, through_groups)
 
 
 @dataclass
@@ -138,6 +138,8 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
         tracks = [through_groups(t, placed, 2 * params.tau) for t in tracks]
     if counted:
         tracks = _long_enough(tracks, need, params.pass_frames(n_frames), n_frames, view, short)
+    if robust and params.steady_edges:
+        tracks = [steady_edges(t, motion_window) for t in tracks]
     return tracks
 
 

@@ -7,6 +7,7 @@ from trap_core.robust.appearance import colour_overlap, colour_shares
 from trap_core.robust.backdrop import (HELD_SHARE, SHADOWED_SHARE, held_share, shadowed,
                                        without_backdrop)
 from trap_core.robust.borders import continue_to_border, end_at_exits
+from trap_core.robust.box_edges import steady_edges
 from trap_core.robust.camera import (HOP_SHARE, camera_paths, camera_transforms, cluster_world_speed, world_speed,
                                      world_steps)
 from trap_core.robust.continuation import continue_tracks, join_handovers, mend_shared_stretches
@@ -37,5 +38,5 @@ __all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderCont
            "hand_to_owners", "held_share", "join_handovers", "join_returns", "join_spare_returns", "keep_one_size",
            "lookalike_tracks", "mend_shared_stretches", "merge_duplicates", "moves_in_hops", "pattern_sizes",
            "reaches_border", "rejoin_fragments", "repeats_others", "scene_patterns", "separate_groups", "shadowed",
-           "split_mixed", "stays_with_scene", "steady_patterns", "swap_at_crossings", "through_groups",
+           "split_mixed", "stays_with_scene", "steady_edges", "steady_patterns", "swap_at_crossings", "through_groups",
            "whole_patterns_apart", "without_backdrop", "world_speed", "world_steps"]

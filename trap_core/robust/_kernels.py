@@ -888,3 +888,39 @@ def pattern_mean_sizes(st_offsets: np.ndarray, st_rows: np.ndarray, patterns: np
             sizes[k] += size
         sizes[k] /= max(hi - lo, 1)
     return sizes
+
+
+@nb.njit(cache=True, nogil=True)
+def side_lines(frames: np.ndarray, edges: np.ndarray, half: int, step: int, min_side: int) -> np.ndarray:
+    """Steady box edges (:func:`trap_core.robust.box_edges.steady_edges`): (n, k) where the
+    Theil-Sen line of each column of ``edges`` (n, k) over the rows on one side of each row
+    (``step`` -1: before it, 1: after it; the ``half`` nearest rows, those within ``half``
+    frames) puts it in that row's frame (``frames``, increasing); NaN where fewer than
+    ``min_side`` rows are on that side."""
+    n, k = edges.shape
+    out = np.full((n, k), np.nan)
+    lags = np.empty(half)
+    values = np.empty(half)
+    slopes = np.empty(half * (half - 1) // 2)
+    for row in range(n):
+        count = 0
+        other = row + step
+        while 0 <= other < n and count < half and abs(frames[other] - frames[row]) <= half:
+            lags[count] = frames[other] - frames[row]
+            count += 1
+            other += step
+        if count < min_side:
+            continue
+        for column in range(k):
+            for i in range(count):
+                values[i] = edges[row + step * (i + 1), column]
+            pairs = 0
+            for i in range(count):
+                for j in range(i + 1, count):
+                    slopes[pairs] = (values[j] - values[i]) / (lags[j] - lags[i])
+                    pairs += 1
+            slope = np.median(slopes[:pairs])
+            for i in range(count):
+                values[i] -= slope * lags[i]
+            out[row, column] = np.median(values[:count])
+    return out

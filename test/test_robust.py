@@ -2282,6 +2282,30 @@ def test_a_track_that_jumps_to_a_lookalike_across_a_gap_hands_each_object_to_the
     assert [len(t) for t in out] == [130, 51]
     np.testing.assert_allclose(out[0].boxes, back.boxes)
 
+def test_a_track_cut_at_its_gap_takes_its_part_after_it_back_where_the_object_came_back() -> None:
+    """An object moves right in frames 0-150 and turns back in frames 151-179, where nothing holds
+    it. Track 1 holds it in frames 0-100 and, after a gap, from frame 180, where it is back at
+    its frame-150 place, now moving left (a jump off its line before the gap); track 2 holds it
+    in frames 101-150. Track 1 is cut at its gap and continued by track 2, and its part after the
+    gap goes back on it: one track. Where that part starts 120 px from track 2's last box (a
+    look-alike), it stays a track of its own."""
+    from trap_core.robust import join_handovers
+    t = np.arange(300, dtype=float)
+    x = np.where(t <= 150, 100 + 2 * t, 400 - 2 * np.maximum(t - 180, 0))
+    boxes = np.column_stack([x, np.full(300, 200.0), np.full(300, 40.0), np.full(300, 30.0)])
+    frames = np.arange(300)
+    cut = np.r_[frames[:101], frames[180:]]
+    out = join_handovers([_as_track(1, cut, boxes[cut]), _as_track(2, frames[101:151], boxes[101:151])],
+                         300, 12, 40.0)
+    assert len(out) == 1
+    np.testing.assert_array_equal(out[0].frames, np.r_[frames[:151], frames[180:]])
+    np.testing.assert_allclose(out[0].boxes, boxes[out[0].frames])
+    elsewhere = np.vstack([boxes[:101], boxes[180:] + [0.0, 120.0, 0.0, 0.0]])
+    out = join_handovers([_as_track(1, cut, elsewhere), _as_track(2, frames[101:151], boxes[101:151])],
+                         300, 12, 40.0)
+    assert sorted(len(t) for t in out) == [120, 151]
+
+
 def test_a_track_that_comes_back_on_the_motion_after_a_gap_is_appended_within_max_gap() -> None:
     """Track 1 holds frames 0-59 of an object moving right; nothing holds it in frames 60-89
     (its regions merged with the ground), and track 2 holds it from frame 90, where track 1's

@@ -192,9 +192,11 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
 
     A track also ends, for this rule, before a gap where it jumps (:func:`_handover_ends`): where
     a later track takes its object over there, it is cut at the gap, continued by that track,
-    and its part after the gap is a track of its own (at most as many cuts as tracks). Not where
-    the later track repeats a box of that part (IoU at least ``min_iou``): its object turned
-    while its patterns were missed, and the track came back on it. Ids are renumbered 1.. in order.
+    and its part after the gap is a track of its own (at most as many cuts as tracks), unless the
+    track so continued ends before that part starts, near its first box (:func:`_back_after_gap`).
+    Not where the later track repeats a box of that part (IoU at least ``min_iou``): its object
+    turned while its patterns were missed, and the track came back on it. Ids are renumbered 1..
+    in order.
     """
     out = list(tracks)
     cuts_left = len(out)  # a cut adds a track that a later join may cut again: bounded
@@ -204,11 +206,13 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
         for end in _handover_ends(out[slot], n_frames, window, reach, cuts_left > 0):
             before, after = in_rows(out[slot], out[slot].frames <= end), in_rows(out[slot], out[slot].frames > end)
             trial = out[:slot] + [before] + out[slot + 1:] + ([after] if len(after) else [])
-            joined, taker = _taken_over(trial, slot, n_frames, window, reach, min_iou, max_gap)
+            joined, taker, continued = _taken_over(trial, slot, n_frames, window, reach, min_iou, max_gap)
             if joined is not None and len(after) and repeats_others(taker, [after], min_iou).any():
                 joined = None  # the track after its gap is on the object taken over: one object all along
             if joined is not None:
-                cuts_left -= bool(len(after))
+                if len(after):
+                    cuts_left -= 1
+                    joined = _back_after_gap(joined, continued, reach)
                 break
         if joined is None:
             slot += 1
@@ -216,6 +220,22 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
         out = joined
         slot = 0  # the joined track may now be followed by another
     return [dataclasses.replace(t, track_id=i) for i, t in enumerate(out, start=1)]
+
+
+def _back_after_gap(tracks: list[Track], continued: int, reach: float) -> list[Track]:
+    """``tracks`` whose last one, the part after the gap where a track was cut
+    (:func:`join_handovers`), is appended back to that track (``continued``: where it is, now
+    continued by the track that took its object over) where it now ends before that part starts
+    and its last box centre is at most ``reach`` px from the part's first: the object was lost
+    there for a while and came back where it had been (it turned while its patterns were
+    missed), as the cluster had it."""
+    track, part = tracks[continued], tracks[-1]
+    if (track.frames[-1] >= part.frames[0]
+            or np.linalg.norm(box_centres(track.boxes[-1:])[0] - box_centres(part.boxes[:1])[0]) > reach):
+        return tracks
+    out = list(tracks[:-1])
+    out[continued] = with_frames(track, part.frames, part.boxes, part.score, part.points)
+    return out
 
 
 def _handover_ends(track: Track, n_frames: int, window: int, reach: float, with_gaps: bool) -> list[int]:
@@ -241,15 +261,15 @@ def _handover_ends(track: Track, n_frames: int, window: int, reach: float, with_
 
 
 def _taken_over(out: list[Track], slot: int, n_frames: int, window: int, reach: float, min_iou: float,
-                max_gap: int) -> tuple[list[Track] | None, Track | None]:
+                max_gap: int) -> tuple[list[Track] | None, Track | None, int]:
     """``out`` with the track ``slot`` continued by the track that takes its object over where it
-    ends, as :func:`join_handovers` tells it, and that track dropped, and that track; None and None
-    where none takes it over."""
+    ends, as :func:`join_handovers` tells it, and that track dropped; that track; and where the
+    continued track now is in the list. None, None and -1 where none takes it over."""
     current = out[slot]
     end = int(current.frames[-1])
     line = _motion_at(current, end, window) if end < n_frames - window else None
     if line is None:
-        return None, None
+        return None, None, -1
     best, best_error, best_rows = None, reach, None
     nearby = []  # (track, its rows from its start) whose first counted box is near the last box
     latest = end + max(window, max_gap)  # where a later track's first counted frame may be at most
@@ -277,12 +297,12 @@ def _taken_over(out: list[Track], slot: int, n_frames: int, window: int, reach: 
         current = in_rows(current, current.frames < _wandering_from(current, in_rows(out[best], best_rows),
                                                                      window, reach))
     if best is None:
-        return None, None
+        return None, None, -1
     follow = in_rows(out[best], best_rows)
     joined = list(out)
     joined[slot] = with_frames(current, follow.frames, follow.boxes, follow.score, follow.points)
     del joined[best]
-    return joined, out[best]
+    return joined, out[best], slot - int(best < slot)
 
 
 def mend_shared_stretches(tracks: Sequence[Track], summary: ClusterSummary, candidates: np.ndarray, n_frames: int,

@@ -819,7 +819,8 @@ def test_a_box_edge_that_jumps_for_a_few_frames_goes_back_on_its_line() -> None:
     """A 40x30 box moving right and down with a pixel of jitter: for two frames a region below the
     object is merged in (its bottom edge 20 px low), for three its left part is lost (its left edge
     10 px in). Those edges go back on the line of their neighbours; every other edge, jitter
-    included, stays as it was."""
+    included, stays as it was. An edge put back where its lines run out of the image stays at
+    the border."""
     from trap_core.robust import steady_edges
     frames = np.r_[np.arange(30), np.arange(33, 80)]  # a gap of two frames
     truth = np.column_stack([100 + 2.0 * frames, 200 + 0.5 * frames, np.full(frames.size, 40.0),
@@ -829,12 +830,16 @@ def test_a_box_edge_that_jumps_for_a_few_frames_goes_back_on_its_line() -> None:
     seen[merged, 3] += 20.0
     seen[lost, 0] += 10.0
     seen[lost, 2] -= 10.0
-    out = steady_edges(_as_track(1, frames, seen), half=12).boxes
+    out = steady_edges(_as_track(1, frames, seen), 12, 640, 480).boxes
     edges = lambda b: np.column_stack([b[:, :2], b[:, :2] + b[:, 2:]])  # noqa: E731
     moved = np.zeros((frames.size, 4), dtype=bool)
     moved[merged, 3] = moved[lost, 0] = True
     np.testing.assert_array_equal(edges(out)[~moved], edges(seen)[~moved])
     np.testing.assert_allclose(edges(out)[moved], edges(truth)[moved], atol=1.5)
+    leaving = truth[:41] + [460.0, 0.0, 0.0, 0.0]  # its lines run past the right border (640) from frame 20
+    leaving[[30, 31], 2] = 10.0  # its right part lost: the edge put back stays in the image
+    out = steady_edges(_as_track(1, frames[:41], leaving), 12, 640, 480).boxes
+    np.testing.assert_allclose(out[[30, 31], 0] + out[[30, 31], 2], 640.0)
 
 
 def test_box_edges_that_move_steadily_or_step_for_good_are_kept() -> None:
@@ -850,7 +855,7 @@ def test_box_edges_that_move_steadily_or_step_for_good_are_kept() -> None:
     taller = np.column_stack([100 + frames, np.full(120, 200.0), np.full(120, 40.0), np.full(120, 30.0)])
     taller[60:, 3] += 30.0
     for boxes in (zoom, leaving, taller):
-        np.testing.assert_array_equal(steady_edges(_as_track(1, frames, boxes), half=12).boxes, boxes)
+        np.testing.assert_array_equal(steady_edges(_as_track(1, frames, boxes), 12, 640, 480).boxes, boxes)
 
 
 def test_a_piece_whose_larger_boxes_are_of_one_size_takes_them_as_its_whole_object() -> None:

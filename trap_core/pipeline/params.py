@@ -155,8 +155,9 @@ class TrapParams:
                             "objects; once the track rules have run, a box so placed in a meeting of up to 2 tau "
                             "frames follows the straight path of its track across it, inside the pair's box")
     steady_edges: bool = _p(True, "robust: once the track rules have run, a box edge further than a fifth of the "
-                                  "track's box size from both lines of that edge, over the tau/2 frames before and the tau/2 "
-                                  "after, is put between them (a region merged in or a part lost for a few frames)")
+                                  "track's box size from both lines of that edge, over the tau/2 frames before and "
+                                  "the tau/2 after, is put between them (a region merged in or a part lost for a few "
+                                  "frames)")
     linkage: str = _p("average", "hierarchical clustering linkage: average, single, complete, weighted (ours)")
     ignore_top: float = _p(0.1, "share of the top levels of the hierarchy the lifetime cut ignores")
     n_objects: int = _p(0, "objects to track; 0 = found without supervision (ours)")

@@ -139,7 +139,7 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
     if counted:
         tracks = _long_enough(tracks, need, params.pass_frames(n_frames), n_frames, view, short)
     if robust and params.steady_edges:
-        tracks = [steady_edges(t, motion_window) for t in tracks]
+        tracks = [steady_edges(t, motion_window, width, height) for t in tracks]
     return tracks
 
 

@@ -23,7 +23,7 @@ from trap_core.robust._kernels import side_lines
 MIN_SIDE = 3  # boxes on a side of a frame that make a line there
 
 
-def steady_edges(track: Track, half: int, share: float = 0.2) -> Track:
+def steady_edges(track: Track, half: int, width: float, height: float, share: float = 0.2) -> Track:
     """The track with each box edge that jumps off its neighbours' line put back on it.
 
     Parameters
@@ -35,6 +35,9 @@ def steady_edges(track: Track, half: int, share: float = 0.2) -> Track:
         away from their lines for fewer frames than about half of that is put back; where the
         edge moved for good, the frames on either side of the step agree with one side's line
         and stay.
+    width, height : float
+        Frame size: an edge put back stays in ``[0, width] x [0, height]`` (the lines of a box
+        cut by the border can run out of the image).
     share : float
         An edge is off a line where it lies further from it than this share of the track's
         median box width (left and right edges) or height (top and bottom edges).
@@ -62,7 +65,7 @@ def steady_edges(track: Track, half: int, share: float = 0.2) -> Track:
     off = (np.abs(edges - before) > limit) & (np.abs(edges - after) > limit)  # False where a side has no line
     if not off.any():
         return track
-    steady = np.where(off, (before + after) / 2, edges)
+    steady = np.where(off, np.clip((before + after) / 2, 0.0, [width, height, width, height]), edges)
     steady_boxes = np.column_stack([steady[:, :2], steady[:, 2:] - steady[:, :2]])
     flipped = np.any(steady_boxes[:, 2:4] < 1, axis=1)  # two opposite edges crossed: keep the box
     steady_boxes[flipped] = boxes[flipped]

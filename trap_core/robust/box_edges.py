@@ -24,7 +24,7 @@ MIN_SIDE = 3  # boxes on a side of a frame that make a line there
 
 
 def steady_edges(track: Track, half: int, width: float, height: float, share: float = 0.2) -> Track:
-    """The track with each box edge that jumps off its neighbours' line put back on it.
+    """The track with each box edge that jumps off its neighbours' lines put back between them.
 
     Parameters
     ----------

@@ -114,7 +114,7 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
     lo, hi = (limit + 1, edge) if backward else (edge + 1, limit)
     others = [t for k, t in enumerate(tracks) if k != slot]
     edge_box = current.boxes[current.frames == edge]
-    if backward and _handed_over(others, edge, velocity, origin, window, reach):
+    if backward and _handed_over(others, edge, line, window, reach):
         return None
     hiding = [t for t in others if box_iou(edge_box, box_path(t, summary.covered.shape[1])[edge])[0] > 0]
     near = []
@@ -151,14 +151,13 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
     return None
 
 
-def _handed_over(others: Sequence[Track], start: int, velocity: np.ndarray, origin: np.ndarray, window: int,
+def _handed_over(others: Sequence[Track], start: int, line: tuple[np.ndarray, np.ndarray], window: int,
                  reach: float) -> bool:
     """Whether one of the ``others`` tracks ends at most ``window`` frames before ``start`` (a
     piece's first frame) with its last box centre at most ``reach`` px from where the piece's
-    motion, read back (``origin + velocity * frame``), puts it: the piece's object was tracked up
-    to there, and :func:`join_handovers` joins the two."""
-    return any(start - window <= int(t.frames[-1]) < start
-               and float(np.linalg.norm(box_centres(t.boxes[-1:])[0] - (origin + velocity * t.frames[-1]))) <= reach
+    motion ``line``, read back, puts it: the piece's object was tracked up to there, and
+    :func:`join_handovers` joins the two."""
+    return any(start - window <= int(t.frames[-1]) < start and _off_line(t, np.array([-1]), line)[0] <= reach
                for t in others)
 
 
@@ -203,7 +202,7 @@ def join_handovers(tracks: Sequence[Track], n_frames: int, window: int, reach: f
     slot = 0
     while slot < len(out):
         joined = None
-        for end in _handover_ends(out[slot], n_frames, window, reach, cuts_left > 0):
+        for end in _handover_ends(out[slot], window, reach, cuts_left > 0):
             before, after = in_rows(out[slot], out[slot].frames <= end), in_rows(out[slot], out[slot].frames > end)
             trial = out[:slot] + [before] + out[slot + 1:] + ([after] if len(after) else [])
             joined, taker, continued = _taken_over(trial, slot, n_frames, window, reach, min_iou, max_gap)
@@ -238,7 +237,7 @@ def _back_after_gap(tracks: list[Track], continued: int, reach: float) -> list[T
     return out
 
 
-def _handover_ends(track: Track, n_frames: int, window: int, reach: float, with_gaps: bool) -> list[int]:
+def _handover_ends(track: Track, window: int, reach: float, with_gaps: bool) -> list[int]:
     """Frames where :func:`join_handovers` looks for a track that takes the ``track``'s object
     over: its last frame and, ``with_gaps``, the last frame before each gap of more than
     ``window`` frames after which it jumps: its first ``window`` boxes after the gap are over
@@ -249,7 +248,7 @@ def _handover_ends(track: Track, n_frames: int, window: int, reach: float, with_
     gaps = np.flatnonzero(np.diff(track.frames) > window) if with_gaps else np.zeros(0, dtype=int)
     for row in gaps.tolist():
         end = int(track.frames[row])
-        line = _motion_at(track, end, window) if end < n_frames - window else None
+        line = _motion_at(track, end, window)  # a gap end is over window frames before the video's end
         if line is None:
             continue
         resumed = np.arange(row + 1, min(row + 1 + window, len(track)))

@@ -2287,6 +2287,7 @@ def test_a_track_that_jumps_to_a_lookalike_across_a_gap_hands_each_object_to_the
     assert [len(t) for t in out] == [130, 51]
     np.testing.assert_allclose(out[0].boxes, back.boxes)
 
+
 def test_a_track_cut_at_its_gap_takes_its_part_after_it_back_where_the_object_came_back() -> None:
     """An object moves right in frames 0-150 and turns back in frames 151-179, where nothing holds
     it. Track 1 holds it in frames 0-100 and, after a gap, from frame 180, where it is back at

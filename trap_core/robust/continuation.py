@@ -229,8 +229,7 @@ def _back_after_gap(tracks: list[Track], continued: int, reach: float) -> list[T
     there for a while and came back where it had been (it turned while its patterns were
     missed), as the cluster had it."""
     track, part = tracks[continued], tracks[-1]
-    if (track.frames[-1] >= part.frames[0]
-            or np.linalg.norm(box_centres(track.boxes[-1:])[0] - box_centres(part.boxes[:1])[0]) > reach):
+    if track.frames[-1] >= part.frames[0] or _centre_distance(track.boxes[-1], part.boxes[0]) > reach:
         return tracks
     out = list(tracks[:-1])
     out[continued] = with_frames(track, part.frames, part.boxes, part.score, part.points)
@@ -252,9 +251,8 @@ def _handover_ends(track: Track, window: int, reach: float, with_gaps: bool) -> 
         if line is None:
             continue
         resumed = np.arange(row + 1, min(row + 1 + window, len(track)))
-        first_back = box_centres(track.boxes[row + 1:row + 2])[0]
         if (np.median(_off_line(track, resumed, line)) > reach
-                and np.linalg.norm(first_back - box_centres(track.boxes[row:row + 1])[0]) > reach):
+                and _centre_distance(track.boxes[row + 1], track.boxes[row]) > reach):
             ends.append(end)
     return ends + [int(track.frames[-1])]
 
@@ -288,8 +286,7 @@ def _taken_over(out: list[Track], slot: int, n_frames: int, window: int, reach: 
         if error <= best_error:
             best, best_error, best_rows = other, error, rows
         elif (later.frames[after[0]] <= end + window
-              and np.linalg.norm(box_centres(later.boxes[after[:1]])[0] - box_centres(current.boxes[-1:])[0])
-              <= reach):
+              and _centre_distance(later.boxes[after[0]], current.boxes[-1]) <= reach):
             nearby.append((other, own))
     if best is None and len(nearby) == 1:
         best, best_rows = nearby[0]
@@ -469,6 +466,11 @@ def _out_from_hiding(hiding: Sequence[Track], position: np.ndarray, edge: int, n
             centre = box_centres(track.boxes[np.searchsorted(track.frames, nearest)][None])[0]
             distances.append(float(np.linalg.norm(position - centre)))
     return min(distances)
+
+
+def _centre_distance(box: np.ndarray, other: np.ndarray) -> float:
+    """Distance between the centres of two boxes ``(x, y, w, h)``."""
+    return float(np.linalg.norm(box_centres(box) - box_centres(other)))
 
 
 def _off_line(track: Track, rows: np.ndarray, line: tuple[np.ndarray, np.ndarray]) -> np.ndarray:

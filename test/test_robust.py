@@ -1703,6 +1703,31 @@ def test_a_track_on_part_of_an_object_joins_the_objects_track() -> None:
     assert len(merge_duplicates([whole, beside], min_common=25)) == 2
 
 
+def test_two_parts_of_one_object_that_move_as_one_are_one_track() -> None:
+    """A person's two arms tracked apart (16x35 boxes 8 px apart, jitter of a pixel) beside
+    another person's whole track (40x90): the arms become one track whose boxes hold both.
+    Two whole people side by side do not (their joint box is twice a person's width), nor two
+    parts whose offset drifts (one slides along the other)."""
+    from trap_core.robust import merge_parts
+    rng = np.random.default_rng(5)
+    frames = np.arange(120)
+    x, y = 100 + 2 * frames + 20 * np.sin(frames / 15), 200 + 30 * np.cos(frames / 20)
+    other = _as_track(1, frames, np.column_stack([x + 200, y, np.full(120, 40.0), np.full(120, 90.0)]))
+    arm = np.column_stack([x, y + 20, np.full(120, 16.0), np.full(120, 35.0)])
+    left = _as_track(2, frames, arm + rng.integers(-1, 2, (120, 4)) * [1, 1, 0, 0])
+    right = _as_track(3, frames[10:], (arm + [24.0, 0, 0, 0] + rng.integers(-1, 2, (120, 4)) * [1, 1, 0, 0])[10:])
+    merged = merge_parts([other, left, right], min_common=10)
+    assert len(merged) == 2
+    joint = merged[1]
+    assert joint.frames.tolist() == frames.tolist()
+    assert np.allclose(joint.boxes[10:, 2], 40, atol=2.01)  # both arms, give or take their jitter
+    person = np.column_stack([x, y, np.full(120, 40.0), np.full(120, 90.0)])
+    assert len(merge_parts([_as_track(1, frames, person), _as_track(2, frames, person + [45.0, 0, 0, 0])],
+                           min_common=10)) == 2
+    sliding = arm + np.column_stack([24.0 + 0 * frames, frames / 2, 0 * frames, 0 * frames])
+    assert len(merge_parts([other, left, _as_track(3, frames, sliding)], min_common=10)) == 3
+
+
 def test_lookalikes_that_traded_objects_where_they_crossed_get_them_back() -> None:
     """Two look-alikes cross at frame 50 (one going right and down, the other left and up); each
     track holds one object before and the other after. Side by side look-alikes, and objects that

@@ -23,7 +23,7 @@ from trap_core.robust import (GroupBoxes, colour_overlap, colour_shares, continu
                               drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_stray_pieces,
                               drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes, join_handovers,
                               join_returns, join_spare_returns, keep_one_size, lookalike_tracks,
-                              mend_shared_stretches, merge_duplicates, repeats_others, separate_groups,
+                              mend_shared_stretches, merge_duplicates, merge_parts, repeats_others, separate_groups,
                               steady_edges, swap_at_crossings, through_groups)
 
 
@@ -136,6 +136,8 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
         tracks = _returns_of_spares(tracks, clusters, tracks_of, n_frames, view, motion_window)
     if robust and params.groups:  # who is who is settled: placed boxes back on their track's path
         tracks = [through_groups(t, placed, 2 * params.tau) for t in tracks]
+    if robust and params.one_track:
+        tracks = merge_parts(tracks, params.tau)
     if counted:
         tracks = _long_enough(tracks, need, params.pass_frames(n_frames), n_frames, view, short)
     if robust and params.steady_edges:

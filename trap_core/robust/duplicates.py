@@ -32,6 +32,13 @@ from trap_core.clustering import (Track, box_centres, box_containment, box_iou, 
 
 TURN = 0.1  # a velocity change of this share of the box size per frame is a turn, not jitter
 HOLE = 3  # frames in a row where jitter may part two boxes that hold the same object
+# Two parts of one object: boxes at most this share of their joint box's larger side apart ...
+PART_GAP = 0.25
+# ... whose centres' offset stays within this share of it of its median (they move as one) ...
+PART_SHIFT = 0.15
+# ... and whose joint box is no larger than the largest track's usual width and height by more
+# than this share (two whole objects side by side make a box twice one's size).
+PART_FIT = 0.1
 
 
 def merge_duplicates(tracks: Sequence[Track], min_common: int, min_iou: float = 0.5, min_inside: float = 0.9,
@@ -48,6 +55,64 @@ def merge_duplicates(tracks: Sequence[Track], min_common: int, min_iou: float = 
             merged.append(candidate)
     merged.sort(key=lambda t: t.track_id)
     return [dataclasses.replace(t, track_id=i) for i, t in enumerate(merged, start=1)]
+
+
+def merge_parts(tracks: Sequence[Track], min_common: int, min_share: float = 0.8) -> list[Track]:
+    """Tracks that hold two parts of one object merged, their boxes joined (ours).
+
+    Where an object's body is one region with the ground around it, its parts that stand apart
+    (a person's arms, a car's windows) can each be a cluster of its own, farther apart than
+    ``separation`` and each on too little of the object to match the other's box. What tells
+    them from two objects side by side is that they move as one for as long as they are both
+    seen: in at least ``min_share`` of the frames both cover (at least ``min_common``, and
+    ``min_share`` of the shorter track's), their boxes touch (:data:`PART_GAP`), the offset
+    between their centres stays put (:data:`PART_SHIFT`), and the box that holds both is of an
+    object's size (:data:`PART_FIT`). The longer track keeps its id and takes the joint box
+    where both are seen and the other's box where only that one is. Ids are renumbered 1.. in
+    order."""
+    if len(tracks) < 2:
+        return list(tracks)
+    largest = np.max([np.nanmedian(t.boxes[:, 2:4], axis=0) for t in tracks if len(t)], axis=0)
+    merged: list[Track] = []
+    for candidate in sorted(tracks, key=len, reverse=True):
+        for k, kept in enumerate(merged):
+            joint = _joint_parts(kept, candidate, min_common, min_share, largest)
+            if joint is not None:
+                merged[k] = _union(dataclasses.replace(kept, boxes=joint), candidate)
+                break
+        else:
+            merged.append(candidate)
+    merged.sort(key=lambda t: t.track_id)
+    return [dataclasses.replace(t, track_id=i) for i, t in enumerate(merged, start=1)]
+
+
+def _joint_parts(kept: Track, other: Track, min_common: int, min_share: float,
+                 largest: np.ndarray) -> np.ndarray | None:
+    """``kept``'s boxes joined with ``other``'s where both are seen, if the two hold parts of
+    one object (:func:`merge_parts`); None if not."""
+    common, in_kept, in_other = np.intersect1d(kept.frames, other.frames, assume_unique=True, return_indices=True)
+    if common.size < max(min_common, min_share * min(len(kept), len(other))):
+        return None
+    a, b = kept.boxes[in_kept], other.boxes[in_other]
+    low = np.minimum(a[:, :2], b[:, :2])
+    high = np.maximum(a[:, :2] + a[:, 2:4], b[:, :2] + b[:, 2:4])
+    seen = np.all(np.isfinite(high - low), axis=1)
+    if seen.sum() < min_share * common.size:
+        return None
+    joint_size = np.median((high - low)[seen], axis=0)
+    if np.any(joint_size > (1 + PART_FIT) * largest):
+        return None
+    side = joint_size.max()
+    gap = np.max(np.maximum(a[:, :2], b[:, :2]) - np.minimum(a[:, :2] + a[:, 2:4], b[:, :2] + b[:, 2:4]), axis=1)
+    offset = box_centres(b) - box_centres(a)
+    with np.errstate(invalid="ignore"):
+        shift = np.linalg.norm(offset - np.median(offset[seen], axis=0), axis=1)
+        together = (gap <= PART_GAP * side) & (shift <= PART_SHIFT * side)
+    if np.mean(together) < min_share:
+        return None
+    boxes = kept.boxes.copy()
+    boxes[in_kept[seen]] = np.column_stack([low, high - low])[seen]
+    return boxes
 
 
 def extend_from_twins(tracks: Sequence[Track], twins: Sequence[Track], min_common: int, size_jump: float,

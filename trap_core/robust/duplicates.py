@@ -18,7 +18,9 @@ stretch away from the track whose motion turns where the two meet or part (the o
 it was going).
 
 An object's track can lack frames that another cluster of the same object holds (its return,
-rejoined to that cluster only): :func:`extend_from_twins` lends them.
+rejoined to that cluster only): :func:`extend_from_twins` lends them. Where the object's body
+blends with the ground, two of its parts can each have a track whose boxes never match:
+:func:`merge_parts` joins those that touch and move as one.
 """
 from __future__ import annotations
 

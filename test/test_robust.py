@@ -1703,6 +1703,25 @@ def test_a_track_on_part_of_an_object_joins_the_objects_track() -> None:
     assert len(merge_duplicates([whole, beside], min_common=25)) == 2
 
 
+def test_a_track_that_hops_around_one_place_in_the_world_reaches_less_than_its_size() -> None:
+    """The camera pans 3 px a frame. A background chain's 30x30 box follows the pan in the view
+    and hops up to 8 px about one place in the world: it reaches less than its own size there,
+    though in the view it crosses 300 px. An object walking 2 px a frame in the world reaches
+    about 180 px over the middle 90 % of its 100 frames; seen with the camera not read (no
+    transforms), the chain's reach is its path in the view."""
+    from trap_core.robust import world_reach
+    rng = np.random.default_rng(3)
+    frames = np.arange(100)
+    transforms = np.tile(np.eye(3), (100, 1, 1))
+    transforms[:, 0, 2] = -3.0 * frames  # world x -> view x - 3 t
+    hops = rng.uniform(-8, 8, (100, 2))
+    chain = np.column_stack([400 - 3.0 * frames + hops[:, 0], 200 + hops[:, 1], np.full(100, 30.0), np.full(100, 30.0)])
+    walker = np.column_stack([100 - 1.0 * frames, np.full(100, 200.0), np.full(100, 30.0), np.full(100, 30.0)])
+    assert world_reach(_as_track(1, frames, chain), transforms) < 30
+    assert 170 < world_reach(_as_track(2, frames, walker), transforms) < 190
+    assert world_reach(_as_track(1, frames, chain), None) > 250
+
+
 def test_two_parts_of_one_object_that_move_as_one_are_one_track() -> None:
     """A person's two arms tracked apart (16x35 boxes 8 px apart, jitter of a pixel) beside
     another person's whole track (40x90): the arms become one track whose boxes hold both.

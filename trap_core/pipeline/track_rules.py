@@ -24,7 +24,7 @@ from trap_core.robust import (GroupBoxes, colour_overlap, colour_shares, continu
                               drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes, join_handovers,
                               join_returns, join_spare_returns, keep_one_size, lookalike_tracks,
                               mend_shared_stretches, merge_duplicates, merge_parts, repeats_others, separate_groups,
-                              steady_edges, swap_at_crossings, through_groups)
+                              steady_edges, swap_at_crossings, through_groups, world_reach)
 
 
 @dataclass
@@ -139,6 +139,7 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
     if robust and params.one_track:
         tracks = merge_parts(tracks, params.tau)
     if counted:
+        tracks = [t for t in tracks if _goes_somewhere(t, tracks_of.transforms)]
         tracks = _long_enough(tracks, need, params.pass_frames(n_frames), n_frames, view, short)
     if robust and params.steady_edges:
         tracks = [steady_edges(t, motion_window, width, height) for t in tracks]
@@ -164,6 +165,15 @@ def _long_enough(tracks: list[Track], min_frames: int, pass_frames: int, n_frame
 
     kept = [t for t in tracks if kept_one(t)]
     return [replace(t, track_id=i) for i, t in enumerate(kept, start=1)]
+
+
+def _goes_somewhere(track: Track, transforms: np.ndarray | None) -> bool:
+    """Whether ``track``'s box goes farther in the world than its own usual size (the median of
+    its larger side; :func:`trap_core.robust.world_reach`). A chain of background patterns that
+    hop between neighbouring look-alikes can pass every speed test and still never leave the
+    place where it started (README, tracks that go nowhere); an object moves on."""
+    seen = np.all(np.isfinite(track.boxes), axis=1)
+    return seen.any() and world_reach(track, transforms) >= np.median(np.max(track.boxes[seen, 2:4], axis=1))
 
 
 def _passes_through(track: Track, n_frames: int, view: tuple[int, int]) -> bool:

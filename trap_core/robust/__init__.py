@@ -8,8 +8,8 @@ from trap_core.robust.backdrop import (HELD_SHARE, SHADOWED_SHARE, held_share, s
                                        without_backdrop)
 from trap_core.robust.borders import continue_to_border, end_at_exits
 from trap_core.robust.box_edges import steady_edges
-from trap_core.robust.camera import (HOP_SHARE, camera_paths, camera_transforms, cluster_world_speed, world_speed,
-                                     world_steps)
+from trap_core.robust.camera import (HOP_SHARE, camera_paths, camera_transforms, cluster_world_speed, world_reach,
+                                     world_speed, world_steps)
 from trap_core.robust.continuation import continue_tracks, join_handovers, mend_shared_stretches
 from trap_core.robust.crossings import lookalike_tracks, swap_at_crossings
 from trap_core.robust.end_colours import EndColours, colours_match
@@ -39,4 +39,4 @@ __all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderCont
            "lookalike_tracks", "mend_shared_stretches", "merge_duplicates", "merge_parts", "moves_in_hops", "pattern_sizes",
            "reaches_border", "rejoin_fragments", "repeats_others", "scene_patterns", "separate_groups", "shadowed",
            "split_mixed", "stays_with_scene", "steady_edges", "steady_patterns", "swap_at_crossings", "through_groups",
-           "whole_patterns_apart", "without_backdrop", "world_speed", "world_steps"]
+           "whole_patterns_apart", "without_backdrop", "world_reach", "world_speed", "world_steps"]

@@ -25,7 +25,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, ObservedPaths
+from trap_core.clustering import ClusterSummary, ObservedPaths, Track, box_centres
 from trap_core.robust._kernels import region_steps, world_speeds, world_step_sums
 from trap_core.rag import StackedGraphs
 
@@ -149,6 +149,22 @@ def map_points(homographies: np.ndarray, points: np.ndarray) -> np.ndarray:
     homographies = np.broadcast_to(homographies, (len(points), 3, 3))
     mapped = np.einsum("nij,nj->ni", homographies, np.column_stack([points, np.ones(len(points))]))
     return mapped[:, :2] / mapped[:, 2:]
+
+
+def world_reach(track: Track, transforms: np.ndarray | None, share: float = 0.9) -> float:
+    """The larger side of the box that holds the middle ``share`` of the track's box centres, per
+    axis, in world coordinates (in the view's where ``transforms`` is None: the camera was not
+    read). Jitter and a box that hops now and then widen it by little; an object that moves
+    goes as far as it moves."""
+    seen = np.all(np.isfinite(track.boxes), axis=1)
+    if not seen.any():
+        return 0.0
+    centres = box_centres(track.boxes[seen])
+    if transforms is not None:
+        centres = map_points(np.linalg.inv(transforms[track.frames[seen]]), centres)
+    tail = 100 * (1 - share) / 2
+    low, high = np.percentile(centres, [tail, 100 - tail], axis=0)
+    return float(np.max(high - low))
 
 
 def world_speed(paths: ObservedPaths, transforms: np.ndarray, n_patterns: int, lag: int = 1) -> np.ndarray:

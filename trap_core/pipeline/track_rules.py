@@ -14,7 +14,8 @@ from functools import cached_property
 
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, Track, build_track, frame_cores, in_rows, reaches_border, twin_clusters
+from trap_core.clustering import (ClusterSummary, Track, build_track, frame_cores, in_rows, reaches_border,
+                                  twin_clusters, usual_size)
 from trap_core.mining import MiningResult
 from trap_core.ordered import each_on_threads
 from trap_core.pipeline.params import TrapParams
@@ -172,8 +173,7 @@ def _goes_somewhere(track: Track, transforms: np.ndarray | None) -> bool:
     its larger side; :func:`trap_core.robust.world_reach`). A chain of background patterns that
     hop between neighbouring look-alikes can pass every speed test and still never leave the
     place where it started (README, tracks that go nowhere); an object moves on."""
-    seen = np.all(np.isfinite(track.boxes), axis=1)
-    return seen.any() and world_reach(track, transforms) >= np.median(np.max(track.boxes[seen, 2:4], axis=1))
+    return len(track) > 0 and world_reach(track, transforms) >= usual_size(track)
 
 
 def _passes_through(track: Track, n_frames: int, view: tuple[int, int]) -> bool:

@@ -156,12 +156,11 @@ def world_reach(track: Track, transforms: np.ndarray | None, share: float = 0.9)
     axis, in world coordinates (in the view's where ``transforms`` is None: the camera was not
     read). Jitter and a box that hops now and then widen it by little; an object that moves
     goes as far as it moves."""
-    seen = np.all(np.isfinite(track.boxes), axis=1)
-    if not seen.any():
+    if not len(track):
         return 0.0
-    centres = box_centres(track.boxes[seen])
+    centres = box_centres(track.boxes)
     if transforms is not None:
-        centres = map_points(np.linalg.inv(transforms[track.frames[seen]]), centres)
+        centres = map_points(np.linalg.inv(transforms[track.frames]), centres)
     tail = 100 * (1 - share) / 2
     low, high = np.percentile(centres, [tail, 100 - tail], axis=0)
     return float(np.max(high - low))

@@ -25,7 +25,7 @@ blends with the ground, two of its parts can each have a track whose boxes never
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
@@ -47,16 +47,8 @@ def merge_duplicates(tracks: Sequence[Track], min_common: int, min_iou: float = 
                      min_share: float = 0.8) -> list[Track]:
     """Tracks with duplicates merged: each group keeps its longest track's boxes and id order,
     and takes the others' frames where it has none. Ids are renumbered 1.. in order."""
-    merged: list[Track] = []
-    for candidate in sorted(tracks, key=len, reverse=True):
-        for k, kept in enumerate(merged):
-            if _same_object(kept, candidate, min_common, min_iou, min_inside, min_share):
-                merged[k] = _union(kept, candidate)
-                break
-        else:
-            merged.append(candidate)
-    merged.sort(key=lambda t: t.track_id)
-    return [dataclasses.replace(t, track_id=i) for i, t in enumerate(merged, start=1)]
+    return _merged(tracks, lambda kept, other: _union(kept, other)
+                   if _same_object(kept, other, min_common, min_iou, min_inside, min_share) else None)
 
 
 def merge_parts(tracks: Sequence[Track], min_common: int, min_share: float = 0.8) -> list[Track]:
@@ -74,13 +66,20 @@ def merge_parts(tracks: Sequence[Track], min_common: int, min_share: float = 0.8
     order."""
     if len(tracks) < 2:
         return list(tracks)
-    largest = np.max([np.nanmedian(t.boxes[:, 2:4], axis=0) for t in tracks if len(t)], axis=0)
+    largest = np.max([np.median(t.boxes[:, 2:4], axis=0) for t in tracks if len(t)], axis=0)
+    return _merged(tracks, lambda kept, other: _joined_parts(kept, other, min_common, min_share, largest))
+
+
+def _merged(tracks: Sequence[Track], join: Callable[[Track, Track], Track | None]) -> list[Track]:
+    """Tracks, longest first, each joined to the first track kept so far that ``join`` takes it
+    into (the joined track; None where it does not), or kept. Ids are renumbered 1.. in the
+    order of the kept tracks' ids."""
     merged: list[Track] = []
     for candidate in sorted(tracks, key=len, reverse=True):
         for k, kept in enumerate(merged):
-            joint = _joint_parts(kept, candidate, min_common, min_share, largest)
-            if joint is not None:
-                merged[k] = _union(dataclasses.replace(kept, boxes=joint), candidate)
+            joined = join(kept, candidate)
+            if joined is not None:
+                merged[k] = joined
                 break
         else:
             merged.append(candidate)
@@ -88,33 +87,27 @@ def merge_parts(tracks: Sequence[Track], min_common: int, min_share: float = 0.8
     return [dataclasses.replace(t, track_id=i) for i, t in enumerate(merged, start=1)]
 
 
-def _joint_parts(kept: Track, other: Track, min_common: int, min_share: float,
-                 largest: np.ndarray) -> np.ndarray | None:
-    """``kept``'s boxes joined with ``other``'s where both are seen, if the two hold parts of
-    one object (:func:`merge_parts`); None if not."""
+def _joined_parts(kept: Track, other: Track, min_common: int, min_share: float, largest: np.ndarray) -> Track | None:
+    """``kept`` with the joint boxes of the two where both are seen and ``other``'s frames it
+    lacks, if the two hold parts of one object (:func:`merge_parts`); None if not."""
     common, in_kept, in_other = np.intersect1d(kept.frames, other.frames, assume_unique=True, return_indices=True)
     if common.size < max(min_common, min_share * min(len(kept), len(other))):
         return None
     a, b = kept.boxes[in_kept], other.boxes[in_other]
-    low = np.minimum(a[:, :2], b[:, :2])
-    high = np.maximum(a[:, :2] + a[:, 2:4], b[:, :2] + b[:, 2:4])
-    seen = np.all(np.isfinite(high - low), axis=1)
-    if seen.sum() < min_share * common.size:
-        return None
-    joint_size = np.median((high - low)[seen], axis=0)
+    a_end, b_end = a[:, :2] + a[:, 2:4], b[:, :2] + b[:, 2:4]
+    low, high = np.minimum(a[:, :2], b[:, :2]), np.maximum(a_end, b_end)
+    joint_size = np.median(high - low, axis=0)
     if np.any(joint_size > (1 + PART_FIT) * largest):
         return None
     side = joint_size.max()
-    gap = np.max(np.maximum(a[:, :2], b[:, :2]) - np.minimum(a[:, :2] + a[:, 2:4], b[:, :2] + b[:, 2:4]), axis=1)
+    gap = np.max(np.maximum(a[:, :2], b[:, :2]) - np.minimum(a_end, b_end), axis=1)
     offset = box_centres(b) - box_centres(a)
-    with np.errstate(invalid="ignore"):
-        shift = np.linalg.norm(offset - np.median(offset[seen], axis=0), axis=1)
-        together = (gap <= PART_GAP * side) & (shift <= PART_SHIFT * side)
-    if np.mean(together) < min_share:
+    shift = np.linalg.norm(offset - np.median(offset, axis=0), axis=1)
+    if np.mean((gap <= PART_GAP * side) & (shift <= PART_SHIFT * side)) < min_share:
         return None
     boxes = kept.boxes.copy()
-    boxes[in_kept[seen]] = np.column_stack([low, high - low])[seen]
-    return boxes
+    boxes[in_kept] = np.column_stack([low, high - low])
+    return _union(dataclasses.replace(kept, boxes=boxes), other)
 
 
 def extend_from_twins(tracks: Sequence[Track], twins: Sequence[Track], min_common: int, size_jump: float,

@@ -611,6 +611,35 @@ def test_a_chain_of_hops_at_a_steady_pace_is_no_steady_evidence_unless_its_speed
     assert steady_patterns(unsteady, in_hops, speed, hop=10.0).tolist() == [True, False, True, False]
 
 
+def test_a_cluster_of_noise_chains_has_no_steady_pattern_and_an_object_s_cluster_has_one() -> None:
+    """Under a pan, two chains of noise-born structures over a smooth ground: one stands still
+    for two frames and then steps 9 px, the other drifts while it jumps back and forth by 6 px.
+    Their steps are shorter than a hop (10 px), so neither moves in hops, nor does their cluster
+    on the pooled test; but neither steps as an object does, and the cluster has no steady
+    pattern. An object's cluster holds such a chain beside a pattern that walks 2 px a frame,
+    and has one."""
+    from trap_core.robust import HOP_SHARE, steady_clusters, steady_patterns, world_steps
+    rng = np.random.default_rng(5)
+    frames = np.arange(96)
+    pan = np.column_stack([-3.0 * frames, 0.5 * frames])
+    walks = [np.column_stack([9.0 * (frames // 3), np.zeros(96)]),  # uneven steps
+             np.column_stack([6.0 * (frames % 2) + 1.0 * frames, np.zeros(96)]),  # back and forth, drifting
+             np.column_stack([9.0 * (frames // 3), np.zeros(96)]),  # the object's cluster: a chain ...
+             np.column_stack([2.0 * frames, np.zeros(96)])]  # ... and the object walking
+    positions = np.concatenate([w + pan + rng.normal(0, 0.2, size=(96, 2)) for w in walks])
+    paths = ObservedPaths(np.repeat(np.arange(4), 96), np.tile(frames, 4), positions)
+    transforms = np.tile(np.eye(3), (96, 1, 1))
+    transforms[:, :2, 2] = pan
+    speed = world_speed(paths, transforms, 4, lag=12)
+    median, mean, in_hops = world_steps(paths, transforms, 4, hop=10.0)
+    unsteady = (median < 0.5 * speed) | (mean > speed / 0.5)
+    assert (in_hops < HOP_SHARE).all() and unsteady.tolist() == [True, True, True, False]  # no hops
+    steady = steady_patterns(unsteady, in_hops, speed, hop=10.0)
+    labels = np.array([0, 0, 1, 1])
+    assert steady_clusters(labels, steady, 3).tolist() == [False, True, False]  # cluster 2: no pattern
+    assert steady_clusters(np.array([0, 0, -1, 1]), steady, 2).tolist() == [False, True]  # -1: in none
+
+
 def test_patterns_seen_whole_leave_a_cluster_seen_mostly_cut() -> None:
     """A cluster mostly cut by the view loses its patterns seen whole to a cluster of their own;
     a cluster mostly seen whole keeps its cut patterns, and one with no whole pattern is left."""

@@ -88,7 +88,9 @@ class ClusterTracks:
 class Clusters:
     """What the track rules read of the clustering: the ``summary`` of every cluster, the
     ``selected`` ones, which are ``moving`` (None: all may be), and the ``labels``, plane
-    ``structures`` and ``occurrences`` of the clustered patterns (look-alikes share structures)."""
+    ``structures`` and ``occurrences`` of the clustered patterns (look-alikes share structures);
+    ``steady``: which clusters have a pattern that moves steadily in the world
+    (:func:`trap_core.robust.steady_patterns`; None: not read)."""
 
     summary: ClusterSummary
     selected: list[int]
@@ -96,6 +98,7 @@ class Clusters:
     labels: np.ndarray
     structures: np.ndarray
     occurrences: np.ndarray
+    steady: np.ndarray | None = None
 
 
 def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: int, view: tuple[int, int],
@@ -140,7 +143,7 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
     if robust and params.one_track:
         tracks = merge_parts(tracks, params.tau)
     if counted:
-        tracks = [t for t in tracks if _goes_somewhere(t, tracks_of.transforms)]
+        tracks = [t for t in tracks if _goes_somewhere(t, tracks_of.transforms) and _steadily_seen(t, clusters.steady)]
         tracks = _long_enough(tracks, need, params.pass_frames(n_frames), n_frames, view, short)
     if robust and params.steady_edges:
         tracks = [steady_edges(t, motion_window, width, height) for t in tracks]
@@ -174,6 +177,15 @@ def _goes_somewhere(track: Track, transforms: np.ndarray | None) -> bool:
     hop between neighbouring look-alikes can pass every speed test and still never leave the
     place where it started (README, tracks that go nowhere); an object moves on."""
     return len(track) > 0 and world_reach(track, transforms) >= usual_size(track)
+
+
+def _steadily_seen(track: Track, steady: np.ndarray | None) -> bool:
+    """Whether one of the patterns of ``track``'s cluster moves steadily in the world (``steady``,
+    per cluster; None: not read). Noise makes and unmakes structures over a smooth or grainy
+    ground, and a chain of them can pass every test of a cluster's motion with not one pattern
+    whose steps follow each other as an object's do; every object's track has one (README,
+    tracks with no steady pattern)."""
+    return steady is None or bool(steady[track.cluster])
 
 
 def _passes_through(track: Track, n_frames: int, view: tuple[int, int]) -> bool:

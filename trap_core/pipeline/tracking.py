@@ -19,7 +19,7 @@ from trap_core.rag import PlaneGraph, StackedGraphs
 from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, EndColours, alone_at_ends,
                               border_contacts, border_share, camera_paths, camera_transforms, cluster_world_speed,
                               hand_to_owners, held_share, moves_in_hops, pattern_sizes, rejoin_fragments,
-                              scene_patterns, shadowed, split_mixed, stays_with_scene, steady_patterns,
+                              scene_patterns, shadowed, split_mixed, stays_with_scene, steady_clusters, steady_patterns,
                               whole_patterns_apart, without_backdrop, world_speed, world_steps)
 
 
@@ -217,7 +217,9 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         selected = [c for c in selected if (all_labels == c).any()]  # none left: all of it was the scene
     if robust and params.one_object:
         all_labels = hand_to_owners(mined, all_labels, selected, stacked)
-    clusters = Clusters(summary, selected, moving, labels, mined.st_pattern[clustered], occurrences)
+    steady_evidence = (steady_clusters(all_labels, steady, summary.length.size)  # of the patterns of their tracks
+                       if robust and params.min_speed > 0 else None)
+    clusters = Clusters(summary, selected, moving, labels, mined.st_pattern[clustered], occurrences, steady_evidence)
     tracks = tracks_of_clusters(clusters, ClusterTracks(mined, all_labels, graphs, stacked, transforms, params),
                                 n_frames, (width, height), own_frames)
     seconds["clustering"] = time.perf_counter() - after_camera - seconds["distances"]

@@ -27,6 +27,11 @@ each step about the chain's own speed. Such a pattern (over the cameraman, 51-70
 hops of ``eps``/4 at 3-4.6 px a frame) neither vouches for hoppers nor counts as steady for the
 pooled test, unless it moves so fast (``eps``/8 a frame or more) that its steps, up to two
 frames apart, are hop-sized anyway.
+
+A cluster with no steady pattern that passes all of this (chains whose uneven steps are shorter
+than a hop) is still no evidence of an object: :func:`steady_clusters` tells the track rules,
+which leave such a cluster's track out of the unsupervised count (README, tracks with no steady
+pattern).
 """
 from __future__ import annotations
 
@@ -43,6 +48,15 @@ def steady_patterns(unsteady: np.ndarray, in_hops: np.ndarray, speed: np.ndarray
     ``HOP_SHARE`` of the path ``in_hops`` of ``hop`` px unless their ``speed`` (px a frame) is
     at least half a hop, where steps two frames apart are hops by themselves."""
     return ~unsteady & ((in_hops < HOP_SHARE) | (speed >= hop / 2))
+
+
+def steady_clusters(labels: np.ndarray, steady: np.ndarray, n_clusters: int) -> np.ndarray:
+    """(``n_clusters``,) which clusters have at least one ``steady`` pattern (:func:`steady_patterns`;
+    ``labels``: each pattern's cluster, -1 in none). A cluster with none has no evidence of an
+    object's motion, whatever its speed: noise-born chains over a smooth ground step unevenly
+    without a hop (README, tracks with no steady pattern)."""
+    held = labels >= 0
+    return np.bincount(labels[held], weights=steady[held], minlength=n_clusters) > 0
 
 
 def moves_in_hops(result: MiningResult, patterns: np.ndarray, labels: np.ndarray, hopping: np.ndarray,

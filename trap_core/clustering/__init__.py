@@ -8,7 +8,7 @@ from trap_core.clustering.selection import (MAX_TRACKS, ClusterSummary, seen_fra
 from trap_core.clustering.tracks import (FrameCores, Track, box_centres, box_containment, box_iou, box_path,
                                         build_track, centre_inside, centre_path, centre_steps, core_regions,
                                         frame_cores, in_rows, one_place, reaches_border, region_boxes_reach_border,
-                                        track_pieces, usual_size, with_frames)
+                                        track_pieces, usual_box, usual_size, with_frames)
 from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
 
 __all__ = [
@@ -46,6 +46,7 @@ __all__ = [
     "track_pieces",
     "trajectories",
     "twin_clusters",
+    "usual_box",
     "usual_size",
     "with_frames",
 ]

@@ -92,6 +92,12 @@ def usual_size(track: Track) -> float:
     return float(np.median(np.max(track.boxes[:, 2:4], axis=1)))
 
 
+def usual_box(track: Track) -> np.ndarray:
+    """(2,) the track's usual (width, height): the median of each over its boxes, (0, 0) for an
+    empty track. Beside :func:`usual_size` where a box's shape matters, not only its size."""
+    return np.median(track.boxes[:, 2:4], axis=0) if len(track) else np.zeros(2)
+
+
 def box_iou(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Intersection over union of boxes ``(x, y, w, h)`` (last axis), broadcast over the others."""
     a, b, inter = _intersection(a, b)

@@ -151,6 +151,12 @@ def map_points(homographies: np.ndarray, points: np.ndarray) -> np.ndarray:
     return mapped[:, :2] / mapped[:, 2:]
 
 
+def to_world(transforms: np.ndarray, frames: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """(N, 2) ``points`` seen in the view in ``frames`` (one frame each) mapped into world (frame 0)
+    coordinates by the camera's ``transforms`` (frame 0 to frame ``t``), undone."""
+    return map_points(np.linalg.inv(transforms[frames]), points)
+
+
 def world_reach(track: Track, transforms: np.ndarray | None, share: float = 0.9) -> float:
     """The larger side of the box that holds the middle ``share`` of the track's box centres, per
     axis, in world coordinates (in the view's where ``transforms`` is None: the camera was not
@@ -160,7 +166,7 @@ def world_reach(track: Track, transforms: np.ndarray | None, share: float = 0.9)
         return 0.0
     centres = box_centres(track.boxes)
     if transforms is not None:
-        centres = map_points(np.linalg.inv(transforms[track.frames]), centres)
+        centres = to_world(transforms, track.frames, centres)
     tail = 100 * (1 - share) / 2
     low, high = np.percentile(centres, [tail, 100 - tail], axis=0)
     return float(np.max(high - low))

@@ -18,7 +18,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, box_centres, box_iou, box_path, in_rows, usual_size, with_frames
+from trap_core.clustering import Track, box_centres, box_iou, box_path, in_rows, usual_box, usual_size, with_frames
 from trap_core.robust._kernels import window_lines
 from trap_core.robust.duplicates import TURN, flag_runs
 from trap_core.robust.motion import straight_line
@@ -64,7 +64,7 @@ def lookalike_tracks(tracks: Sequence[Track], labels: np.ndarray, st_pattern: np
     member = np.flatnonzero(np.isin(labels, clusters))
     similarity = structure_similarity(np.searchsorted(clusters, labels[member]), st_pattern[member], weights[member])
     slot = np.searchsorted(clusters, [t.cluster for t in tracks])
-    sizes = np.array([np.median(t.boxes[:, 2:4], axis=0) if len(t) else (0.0, 0.0) for t in tracks]).reshape(-1, 2)
+    sizes = np.array([usual_box(t) for t in tracks]).reshape(-1, 2)
     larger = np.maximum(sizes[:, None], sizes[None])
     one_size = np.all(np.abs(sizes[:, None] - sizes[None]) <= SAME_SIZE * larger, axis=2)
     if colours is not None:

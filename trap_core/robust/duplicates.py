@@ -30,7 +30,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from trap_core.clustering import (Track, box_centres, box_containment, box_iou, box_path, centre_inside, in_rows,
-                                  reaches_border, track_pieces, with_frames)
+                                  reaches_border, track_pieces, usual_box, with_frames)
 
 TURN = 0.1  # a velocity change of this share of the box size per frame is a turn, not jitter
 HOLE = 3  # frames in a row where jitter may part two boxes that hold the same object
@@ -66,7 +66,7 @@ def merge_parts(tracks: Sequence[Track], min_common: int, min_share: float = 0.8
     order."""
     if len(tracks) < 2:
         return list(tracks)
-    largest = np.max([np.median(t.boxes[:, 2:4], axis=0) for t in tracks if len(t)], axis=0)
+    largest = np.max([usual_box(t) for t in tracks if len(t)], axis=0)
     return _merged(tracks, lambda kept, other: _joined_parts(kept, other, min_common, min_share, largest))
 
 
@@ -135,7 +135,7 @@ def extend_from_twins(tracks: Sequence[Track], twins: Sequence[Track], min_commo
         kept = out[same[0]]
         lend = ~np.isin(twin.frames, kept.frames)
         if size_jump:
-            lend &= np.all(twin.boxes[:, 2:4] <= size_jump * np.median(kept.boxes[:, 2:4], axis=0), axis=1)
+            lend &= np.all(twin.boxes[:, 2:4] <= size_jump * usual_box(kept), axis=1)
         others = [t for k, t in enumerate(out) if k != same[0]]
         lend &= ~repeats_others(twin, others, min_iou)
         if view is not None:

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from trap_core.clustering import Trajectories
-from trap_core.robust.camera import map_points
+from trap_core.robust.camera import to_world
 
 PACE = 3.0  # an object out of sight goes at most this many times as fast as it went in sight
 TAIL = 10  # frames at a fragment's end (start) over which its motion there is read (here and in its predictions)
@@ -39,7 +39,7 @@ class FragmentReach:
         in_view = [paths.points[r] for r in rows]
         self._ends = [_ends(*in_view, tail)]
         if transforms is not None:
-            in_world = [map_points(np.linalg.inv(transforms[f]), p) for f, p in zip(frames, in_view)]
+            in_world = [to_world(transforms, f, p) for f, p in zip(frames, in_view)]
             self._ends.append(_ends(*in_world, tail))
 
     def seams_within_reach(self, group: np.ndarray, other: np.ndarray) -> bool:

@@ -52,7 +52,7 @@ from scipy import sparse
 from trap_core.clustering import ClusterSummary, Trajectories, region_boxes_reach_border, summarise
 from trap_core.mining import MiningResult
 from trap_core.robust._kernels import companions_apart, cut_counts, group_distances, mean_pair_distances
-from trap_core.robust.camera import map_points
+from trap_core.robust.camera import map_points, to_world
 from trap_core.robust.end_colours import MIN_MATCH, EndColours
 from trap_core.robust.reach import TAIL, FragmentReach
 
@@ -259,9 +259,9 @@ def _prediction_errors(paths: Trajectories, earlier: np.ndarray, later: np.ndarr
     error = np.linalg.norm(arrival - (last_in_view[slot] + velocity_in_view[slot] * gap), axis=1)
     if transforms is None:
         return error
-    to_world = np.linalg.inv(transforms[np.r_[last_frame - tail + 1, last_frame]]).reshape(2, ends.size, 3, 3)
-    last_in_world, velocity_in_world = _steady(map_points(to_world[0], paths.points[last_row - tail + 1]),
-                                               map_points(to_world[1], paths.points[last_row]), tail)
+    tail_start = to_world(transforms, last_frame - tail + 1, paths.points[last_row - tail + 1])
+    tail_end = to_world(transforms, last_frame, paths.points[last_row])
+    last_in_world, velocity_in_world = _steady(tail_start, tail_end, tail)
     seen = map_points(transforms[paths.start[later]], last_in_world[slot] + velocity_in_world[slot] * gap)
     return np.minimum(error, np.linalg.norm(arrival - seen, axis=1))
 

@@ -1776,6 +1776,28 @@ def test_two_parts_of_one_object_that_move_as_one_are_one_track() -> None:
     assert len(merge_parts([other, left, _as_track(3, frames, sliding)], min_common=10)) == 3
 
 
+def test_two_parts_of_a_wide_object_beside_a_tall_one_are_one_track() -> None:
+    """A wide object (a 38x26 box whose frame blends with the ground) tracked as its screen (15x11)
+    and its knob (9x7), 9 px apart across the frame between them, beside a whole person (21x48): its
+    parts' joint box (~33x14) is wider than any track's usual width, but no larger than the usual
+    sides of the tracks (48 and 21), so they become one track. Two such whole objects side by side
+    do not (their joint box's larger side is twice theirs)."""
+    from trap_core.robust import merge_parts
+    rng = np.random.default_rng(7)
+    frames = np.arange(150)
+    x, y = 80 + 1.2 * frames, 60 + 40 * np.sin(frames / 25)
+    person = _as_track(1, frames, np.column_stack([x - 60, y + 80, np.full(150, 21.0), np.full(150, 48.0)]))
+    jitter = rng.integers(-1, 2, (150, 4)) * [1, 1, 0, 0]
+    screen = _as_track(2, frames, np.column_stack([x, y, np.full(150, 15.0), np.full(150, 11.0)]) + jitter)
+    knob = _as_track(3, frames, np.column_stack([x + 24, y + 4, np.full(150, 9.0), np.full(150, 7.0)]) + jitter[::-1])
+    merged = merge_parts([person, screen, knob], min_common=10)
+    assert len(merged) == 2
+    assert np.allclose(np.median(merged[1].boxes[:, 2:4], axis=0), [33, 11], atol=2.01)
+    whole = np.column_stack([x, y, np.full(150, 38.0), np.full(150, 26.0)])
+    assert len(merge_parts([person, _as_track(2, frames, whole), _as_track(3, frames, whole + [40.0, 0, 0, 0])],
+                           min_common=10)) == 3
+
+
 def test_lookalikes_that_traded_objects_where_they_crossed_get_them_back() -> None:
     """Two look-alikes cross at frame 50 (one going right and down, the other left and up); each
     track holds one object before and the other after. Side by side look-alikes, and objects that

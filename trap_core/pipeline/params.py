@@ -137,7 +137,7 @@ class TrapParams:
                                "(patterns missed for a few frames)")
     one_track: bool = _p(True, "robust: tracks whose boxes match (IoU >= 0.5, or the smaller 90 % inside the other) "
                                "in 80 % of the (at least tau) frames they share hold one object: they are merged, and "
-                               "so are two that touch and move as one there (parts of one object); "
+                               "so are two that lie close and move as one there (parts of one object); "
                                "boxes more than half the usual size off the track's path (tau/3 frames each side) "
                                "are dropped; a stretch of tau or more frames where a track repeats another's boxes "
                                "is dropped from it if it turns where the stretch begins or ends (with any piece of "

@@ -20,7 +20,7 @@ it was going).
 An object's track can lack frames that another cluster of the same object holds (its return,
 rejoined to that cluster only): :func:`extend_from_twins` lends them. Where the object's body
 blends with the ground, two of its parts can each have a track whose boxes never match:
-:func:`merge_parts` joins those that touch and move as one.
+:func:`merge_parts` joins those that lie close and move as one.
 """
 from __future__ import annotations
 
@@ -34,12 +34,14 @@ from trap_core.clustering import (Track, box_centres, box_containment, box_iou, 
 
 TURN = 0.1  # a velocity change of this share of the box size per frame is a turn, not jitter
 HOLE = 3  # frames in a row where jitter may part two boxes that hold the same object
-# Two parts of one object: boxes at most this share of their joint box's larger side apart ...
-PART_GAP = 0.25
+# Two parts of one object: boxes at most this share of their joint box's larger side apart (a
+# frame between them that blends with the ground can stand a third of it) ...
+PART_GAP = 0.35
 # ... whose centres' offset stays within this share of it of its median (they move as one) ...
 PART_SHIFT = 0.15
-# ... and whose joint box is no larger than the largest track's usual width and height by more
-# than this share (two whole objects side by side make a box twice one's size).
+# ... and whose joint box's larger and smaller sides are no larger than the largest of the tracks'
+# usual larger and smaller sides by more than this share (two whole objects side by side make a box
+# twice one's size; sides, not width and height, as a wide object and a tall one are both objects).
 PART_FIT = 0.1
 
 
@@ -59,14 +61,14 @@ def merge_parts(tracks: Sequence[Track], min_common: int, min_share: float = 0.8
     ``separation`` and each on too little of the object to match the other's box. What tells
     them from two objects side by side is that they move as one for as long as they are both
     seen: in at least ``min_share`` of the frames both cover (at least ``min_common``, and
-    ``min_share`` of the shorter track's), their boxes touch (:data:`PART_GAP`), the offset
+    ``min_share`` of the shorter track's), their boxes are close (:data:`PART_GAP`), the offset
     between their centres stays put (:data:`PART_SHIFT`), and the box that holds both is of an
     object's size (:data:`PART_FIT`). The longer track keeps its id and takes the joint box
     where both are seen and the other's box where only that one is. Ids are renumbered 1.. in
     order."""
     if len(tracks) < 2:
         return list(tracks)
-    largest = np.max([usual_box(t) for t in tracks if len(t)], axis=0)
+    largest = np.max([_sides(usual_box(t)) for t in tracks if len(t)], axis=0)
     return _merged(tracks, lambda kept, other: _joined_parts(kept, other, min_common, min_share, largest))
 
 
@@ -97,7 +99,7 @@ def _joined_parts(kept: Track, other: Track, min_common: int, min_share: float, 
     a_end, b_end = a[:, :2] + a[:, 2:4], b[:, :2] + b[:, 2:4]
     low, high = np.minimum(a[:, :2], b[:, :2]), np.maximum(a_end, b_end)
     joint_size = np.median(high - low, axis=0)
-    if np.any(joint_size > (1 + PART_FIT) * largest):
+    if np.any(_sides(joint_size) > (1 + PART_FIT) * largest):
         return None
     side = joint_size.max()
     gap = np.max(np.maximum(a[:, :2], b[:, :2]) - np.minimum(a_end, b_end), axis=1)
@@ -108,6 +110,11 @@ def _joined_parts(kept: Track, other: Track, min_common: int, min_share: float, 
     boxes = kept.boxes.copy()
     boxes[in_kept] = np.column_stack([low, high - low])
     return _union(dataclasses.replace(kept, boxes=boxes), other)
+
+
+def _sides(size: np.ndarray) -> np.ndarray:
+    """(2,) a box's (width, height) ``size`` as (larger side, smaller side)."""
+    return np.sort(size)[::-1]
 
 
 def extend_from_twins(tracks: Sequence[Track], twins: Sequence[Track], min_common: int, size_jump: float,

@@ -2275,6 +2275,28 @@ def test_boxes_after_an_object_left_the_view_are_dropped() -> None:
     assert end_at_exits(seen_first, 640, 480, min_gap=12).frames.tolist() == list(range(28)) + list(range(61, 65))
 
 
+def test_a_return_first_seen_clear_of_the_border_and_moving_in_is_kept() -> None:
+    """An object leaves through the left border; 25 frames later its track comes back 12 px
+    clear of the right border (its patterns formed once it was in view) and moves left, away
+    from it: it came in, and those boxes are kept. The same boxes moving right (toward the
+    border), or starting mid-view, are not its return."""
+    from trap_core.robust import end_at_exits
+    frames = np.arange(35)
+    x = 100.0 - 5 * frames
+    left = np.column_stack([np.maximum(x, 0), np.full(35, 200.0), np.minimum(40.0, x + 40), np.full(35, 30.0)])
+    left[28:] = np.column_stack([30.0 + 5 * np.arange(7), np.full(7, 200.0), np.full(7, 16.0), np.full(7, 30.0)])
+
+    def back(start: float, step: float) -> np.ndarray:
+        return np.column_stack([start + step * np.arange(15), np.full(15, 100.0), np.full(15, 40.0), np.full(15, 30.0)])
+
+    track_frames = np.r_[frames, 60:75]
+    came_in = end_at_exits(_as_track(1, track_frames, np.vstack([left, back(588.0, -3.0)])), 640, 480, min_gap=12)
+    assert came_in.frames.tolist() == list(range(28)) + list(range(60, 75))
+    for start, step in ((588.0, 3.0), (300.0, -3.0)):
+        out = end_at_exits(_as_track(1, track_frames, np.vstack([left, back(start, step)])), 640, 480, min_gap=12)
+        assert out.frames.tolist() == list(range(28))
+
+
 def test_an_object_half_out_of_view_and_moving_out_when_its_track_breaks_has_left() -> None:
     """A 40 px box moves right at 5 px a frame into the right border; its boxes there hold parts
     of the object (on and off the border, so no run of shrinking boxes), the last one 15 px wide

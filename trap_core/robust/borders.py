@@ -116,7 +116,8 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     ``min_gap`` frames, or a jump of the box by more than its size: a continuation through the
     gap, :func:`trap_core.robust.continue_tracks`, can run up to the return) whose first box
     reaches the border (:func:`reaches_border`, within a quarter of the object's usual extent:
-    that box may be a sliver of it), or up to an entry: a box that comes onto a border and grows
+    that box may be a sliver of it) or lies within its extent of a border and moves away from it
+    (:func:`_coming_in`, after a gap), or up to an entry: a box that comes onto a border and grows
     across it over ``leaving`` frames (a filled gap can run from something else into the return
     with no jump).
 
@@ -145,10 +146,13 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     frames = track.frames
     starts = np.r_[True, np.diff(frames) > min_gap]
     # a continuation can fill the gap up to the object's return: it comes back with a jump then
+    piece_rows = track_pieces(frames, min_gap, boxes)
     pieces = np.zeros(frames.size, dtype=bool)
-    pieces[[rows[0] for rows in track_pieces(frames, min_gap, boxes)]] = True
+    pieces[[rows[0] for rows in piece_rows]] = True
     # a piece's first box may be a sliver of the object at the border: reach measured at its usual size
     entering = pieces & reaches_border(boxes, width, height, size=usual[:2])
+    after_gap = [rows for rows in piece_rows if rows[0] and frames[rows[0]] - frames[rows[0] - 1] > min_gap]
+    entering[_coming_in(boxes, after_gap, width, height, usual[:2], min_gap)] = True
     # an object coming into view lies on the border, its boxes as noisy as its patterns: seen whole first, it can leave
     whole_before = _seen_whole_in_run(whole, starts)
     keep = np.ones(frames.size, dtype=bool)
@@ -203,6 +207,26 @@ def _gone_out(boxes: np.ndarray, sides: np.ndarray, extent: np.ndarray, usual: n
     outward = np.column_stack([-step[:, 0], -step[:, 1], step[:, 0], step[:, 1]]) > 0
     gone = sides[rows] & (extent[rows] < usual / 2) & outward
     return rows[gone.any(axis=1)]
+
+
+def _coming_in(boxes: np.ndarray, piece_rows: list[np.ndarray], width: float, height: float, usual: np.ndarray,
+               ahead: int) -> np.ndarray:
+    """First rows of the pieces (``piece_rows``: those after a gap) whose first box lies within
+    the object's extent (its own or the ``usual`` one, the larger) of a border and whose box
+    centre moves away from that border over the piece's next ``ahead`` rows: an object that came
+    in through the border unseen (:func:`end_at_exits`). Its patterns form once its structures
+    are in view, by then clear of the border by a few px to its whole size. (Right after an exit,
+    with no gap, a box that near and moving in is what the patterns went on with.)"""
+    if not piece_rows:
+        return np.zeros(0, dtype=np.int64)
+    first = np.array([rows[0] for rows in piece_rows], dtype=np.int64)
+    later = np.array([rows[min(ahead, rows.size - 1)] for rows in piece_rows], dtype=np.int64)
+    x, y, w, h = boxes[first].T
+    reach_x, reach_y = np.maximum(w, usual[0]), np.maximum(h, usual[1])
+    near = np.column_stack([x <= reach_x, y <= reach_y, x + w >= width - reach_x, y + h >= height - reach_y])
+    step = box_centres(boxes[later]) - box_centres(boxes[first])
+    away = np.column_stack([step[:, 0], step[:, 1], -step[:, 0], -step[:, 1]]) > 0
+    return first[(near & away).any(axis=1)]
 
 
 def _clear_of_borders(boxes: np.ndarray, width: float, height: float, margin: np.ndarray) -> np.ndarray:

@@ -136,8 +136,8 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     Track
     """
     boxes = track.boxes.astype(float)
-    x, y, w, h = boxes.T
-    sides = np.column_stack([x <= 0.5, y <= 0.5, x + w >= width - 0.5, y + h >= height - 0.5])
+    w, h = boxes[:, 2], boxes[:, 3]
+    sides = _on_sides(boxes, width, height, 0.5, 0.5)
     whole = ~sides.any(axis=1)
     if not whole.any() or boxes.shape[0] <= leaving:
         return track
@@ -151,7 +151,7 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     pieces[[rows[0] for rows in piece_rows]] = True
     # a piece's first box may be a sliver of the object at the border: reach measured at its usual size
     entering = pieces & reaches_border(boxes, width, height, size=usual[:2])
-    after_gap = [rows for rows in piece_rows if rows[0] and frames[rows[0]] - frames[rows[0] - 1] > min_gap]
+    after_gap = [rows for rows in piece_rows if rows[0] and starts[rows[0]]]
     entering[_coming_in(boxes, after_gap, width, height, usual[:2], min_gap)] = True
     # an object coming into view lies on the border, its boxes as noisy as its patterns: seen whole first, it can leave
     whole_before = _seen_whole_in_run(whole, starts)
@@ -204,7 +204,7 @@ def _gone_out(boxes: np.ndarray, sides: np.ndarray, extent: np.ndarray, usual: n
     rows = rows[run[rows - leaving] == run[rows]]
     earlier = rows - leaving
     step = box_centres(boxes[rows]) - box_centres(boxes[earlier])
-    outward = np.column_stack([-step[:, 0], -step[:, 1], step[:, 0], step[:, 1]]) > 0
+    outward = _toward_sides(step)
     gone = sides[rows] & (extent[rows] < usual / 2) & outward
     return rows[gone.any(axis=1)]
 
@@ -221,12 +221,24 @@ def _coming_in(boxes: np.ndarray, piece_rows: list[np.ndarray], width: float, he
         return np.zeros(0, dtype=np.int64)
     first = np.array([rows[0] for rows in piece_rows], dtype=np.int64)
     later = np.array([rows[min(ahead, rows.size - 1)] for rows in piece_rows], dtype=np.int64)
-    x, y, w, h = boxes[first].T
-    reach_x, reach_y = np.maximum(w, usual[0]), np.maximum(h, usual[1])
-    near = np.column_stack([x <= reach_x, y <= reach_y, x + w >= width - reach_x, y + h >= height - reach_y])
-    step = box_centres(boxes[later]) - box_centres(boxes[first])
-    away = np.column_stack([step[:, 0], step[:, 1], -step[:, 0], -step[:, 1]]) > 0
+    near = _on_sides(boxes[first], width, height, np.maximum(boxes[first, 2], usual[0]),
+                     np.maximum(boxes[first, 3], usual[1]))
+    away = _toward_sides(box_centres(boxes[first]) - box_centres(boxes[later]))
     return first[(near & away).any(axis=1)]
+
+
+def _on_sides(boxes: np.ndarray, width: float, height: float, reach_x: np.ndarray | float,
+              reach_y: np.ndarray | float) -> np.ndarray:
+    """(n, 4) bool: per box ``(x, y, w, h)``, whether it lies within ``reach_x`` (``reach_y``) px
+    of the left, top, right and bottom border of a ``width`` x ``height`` image."""
+    x, y, w, h = boxes.T
+    return np.column_stack([x <= reach_x, y <= reach_y, x + w >= width - reach_x, y + h >= height - reach_y])
+
+
+def _toward_sides(step: np.ndarray) -> np.ndarray:
+    """(n, 4) bool: per (dx, dy) ``step``, whether it goes toward the left, top, right and bottom
+    border (the columns of :func:`_on_sides`)."""
+    return np.column_stack([-step[:, 0], -step[:, 1], step[:, 0], step[:, 1]]) > 0
 
 
 def _clear_of_borders(boxes: np.ndarray, width: float, height: float, margin: np.ndarray) -> np.ndarray:

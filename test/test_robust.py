@@ -2886,6 +2886,25 @@ def test_a_selected_cluster_whose_patterns_all_stay_with_the_scene_is_no_track(m
     assert result.tracks == [] and result.selected == []
 
 
+def test_a_selected_cluster_whose_patterns_are_all_handed_to_another_is_no_track(monkeypatch) -> None:
+    """A selected cluster whose every pattern lies on another selected cluster's object is handed
+    to it whole: it holds nothing of its own. It used to reach the track rules empty, and the run
+    ended in a ValueError (met on 2026-12-06: five short patterns of one car, in a video of
+    look-alike cars over the rocket segmented in CIELAB)."""
+    import trap_core.pipeline.tracking as tracking
+    params = TrapParams(segmentation="colour")
+    graphs, _ = synthetic_graphs(SceneConfig(frames=120, seed=0, **PRESETS["anim2"]), params)
+    kept = track(graphs, params)
+    assert len(kept.tracks) == 3
+    first, second = kept.selected[:2]
+
+    def handed_whole(mined, labels, selected, stacked):
+        return np.where(labels == first, second, labels)
+    monkeypatch.setattr(tracking, "hand_to_owners", handed_whole)
+    result = track(graphs, params)
+    assert first not in result.selected and second in result.selected and len(result.tracks) == 2
+
+
 def test_chains_of_noise_born_structures_whose_own_regions_stay_with_the_scene_are_no_tracks() -> None:
     """Two discs over gravel with sensor noise (320x240, 150 frames): noise makes and unmakes
     structures between the stones, chains of them drift over the scene and pass every motion test

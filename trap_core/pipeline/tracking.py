@@ -217,6 +217,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         selected = [c for c in selected if (all_labels == c).any()]  # none left: all of it was the scene
     if robust and params.one_object:
         all_labels = hand_to_owners(mined, all_labels, selected, stacked)
+        selected = [c for c in selected if (all_labels == c).any()]  # none left: all of it lay on others' objects
     steady_evidence = (steady_clusters(all_labels, steady, summary.length.size)  # of the patterns of their tracks
                        if robust and params.min_speed > 0 else None)
     clusters = Clusters(summary, selected, moving, labels, mined.st_pattern[clustered], occurrences, steady_evidence)

@@ -77,6 +77,20 @@ def test_mean_gap_stops_a_region_climbing_a_colour_ramp() -> None:
         image, k=7, sigma=0, min_size=20, threshold="size")[1]  # size threshold: k is not in colour units
 
 
+def test_lab_distances_weigh_a_grey_step_as_rgb_and_a_hue_change_more() -> None:
+    """Two greys 20 apart in each channel (34.6 RGB units) and a reddish patch at about the
+    brightness of the lighter grey, 33.2 RGB units from it: in RGB the patch is as near as the
+    grey step and k 40 merges all three; in scaled CIELAB the grey step keeps its weight (35.2)
+    while the hue change weighs 75.8, and the patch stays a region of its own."""
+    image = np.full((40, 80, 3), 100, dtype=np.uint8)
+    image[:, 40:] = 120
+    image[10:30, 50:70] = (150, 110, 110)
+    assert felzenszwalb(image, k=40, sigma=0, min_size=0)[1] == 1
+    labels, n = felzenszwalb(image, k=40, sigma=0, min_size=0, colour_space="lab")
+    assert n == 2 and labels[0, 0] == labels[0, -1] != labels[20, 60]
+    assert felzenszwalb(image, k=30, sigma=0, min_size=0, colour_space="lab")[1] == 3  # the grey step: 35.2 > 30
+
+
 def test_regions_are_four_connected_and_compact() -> None:
     image = _natural("astronaut")
     for connectivity in (4, 8):
@@ -163,7 +177,7 @@ def test_two_threads_give_the_same_labels() -> None:
 @pytest.mark.parametrize("kwargs,pattern", [
     (dict(threshold="median"), "threshold must be"), (dict(k=-1), "k >= 0"),
     (dict(sigma=float("nan")), "sigma >= 0"), (dict(connectivity=6), "connectivity"),
-    (dict(mean_gap=-1.0), "mean_gap >= 0"),
+    (dict(mean_gap=-1.0), "mean_gap >= 0"), (dict(colour_space="hsv"), "colour_space must be"),
 ])
 def test_bad_parameters(kwargs: dict, pattern: str) -> None:
     with pytest.raises(SegmentationError, match=pattern):

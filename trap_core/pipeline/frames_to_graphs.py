@@ -152,7 +152,8 @@ def _regions(small: np.ndarray, params: TrapParams) -> tuple[np.ndarray, int]:
     if params.segmentation == "colour":
         return colour_components(small)
     return felzenszwalb(small, k=params.k, sigma=params.sigma, min_size=params.min_size,
-                        threshold=params.threshold, connectivity=params.connectivity, mean_gap=params.mean_gap)
+                        threshold=params.threshold, connectivity=params.connectivity, mean_gap=params.mean_gap,
+                        colour_space=params.colour_space)
 
 
 def _in_frame_pixels(graph: PlaneGraph, scale_x: float, scale_y: float) -> PlaneGraph:

@@ -7,13 +7,13 @@ from typing import Any
 
 from trap_core.clustering import LINKAGES, MAX_TRACKS
 from trap_core.mining import MiningParams
-from trap_core.segmentation import THRESHOLD_MODES
+from trap_core.segmentation import COLOUR_SPACES, THRESHOLD_MODES
 
 SEGMENTATIONS = ("felzenszwalb", "colour")
 METHODS = ("paper", "robust")
 # Which node needs which parameters (the segmentation node: stages 1-2; the mining node: 3-7).
 GRAPH_STAGE = ("segmentation", "k", "max_regions", "sigma", "min_size", "threshold", "connectivity", "mean_gap",
-               "max_side", "colour_bins", "contact_tolerance", "threads")
+               "colour_space", "max_side", "colour_bins", "contact_tolerance", "threads")
 # What the segmentation node also reads: whether tracking will take the camera's steps from the
 # images (:attr:`TrapParams.reads_image_steps`); the graph stage reads them only then.
 IMAGE_STEP_STAGE = ("method", "image_motion", "min_speed", "grow", "still_regions")
@@ -46,6 +46,9 @@ class TrapParams:
                               "colour ramps that JPEG or video compression leave along edges into a differently "
                               "coloured neighbour (ours; 5 for compressed footage over textured ground: README, "
                               "compressed frames); 0 = off (paper)")
+    colour_space: str = _p("rgb", "Felzenszwalb: colour distances in rgb (paper) or lab (CIELAB, scaled so that steps "
+                                  "between greys weigh as in rgb: a hue change at one brightness is not outweighed "
+                                  "by the brightness steps of texture; ours)")
     max_side: int = _p(640, "px: frames are segmented with their longer side scaled to this (down, or up for smaller "
                             "frames), so objects get as many regions as at the size the defaults were made for; "
                             "results stay in the frame's pixels (ours); 0 = each frame at its own size")
@@ -183,6 +186,7 @@ class TrapParams:
         checks = [
             (self.segmentation in SEGMENTATIONS, f"segmentation must be one of {SEGMENTATIONS}"),
             (self.threshold in THRESHOLD_MODES, f"threshold must be one of {THRESHOLD_MODES}"),
+            (self.colour_space in COLOUR_SPACES, f"colour_space must be one of {COLOUR_SPACES}"),
             (self.method in METHODS, f"method must be one of {METHODS}"),
             (self.linkage in LINKAGES, f"linkage must be one of {LINKAGES}"),
             (self.k >= 0 and self.sigma >= 0 and self.min_size >= 0 and self.mean_gap >= 0,

@@ -5,8 +5,8 @@ from trap_core.clustering.errors import ClusteringError
 from trap_core.clustering.hierarchy import LINKAGES, Hierarchy, cluster_patterns, labels_after_merges, lifetime_cut
 from trap_core.clustering.selection import (MAX_TRACKS, ClusterSummary, seen_frames, select_clusters, summarise,
                                            twin_clusters)
-from trap_core.clustering.tracks import (FrameCores, Track, box_centres, box_containment, box_iou, box_path,
-                                        build_track, centre_inside, centre_path, centre_steps, core_regions,
+from trap_core.clustering.tracks import (FrameCores, Track, border_sides, box_centres, box_containment, box_iou,
+                                        box_path, build_track, centre_inside, centre_path, centre_steps, core_regions,
                                         frame_cores, in_rows, one_place, reaches_border, region_boxes_reach_border,
                                         track_pieces, usual_box, usual_size, with_frames)
 from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
@@ -21,6 +21,7 @@ __all__ = [
     "ObservedPaths",
     "Track",
     "Trajectories",
+    "border_sides",
     "box_centres",
     "box_containment",
     "box_iou",

@@ -129,10 +129,20 @@ def reaches_border(boxes: np.ndarray, width: float, height: float, margin: float
     """Whether boxes ``(x, y, w, h)`` (N, 4) come within ``margin`` times their size (their own,
     or at least ``size``: width, height) of the image border: the object is entering or leaving
     the view."""
-    x, y, w, h = np.asarray(boxes, dtype=float).T
+    boxes = np.asarray(boxes, dtype=float)
+    w, h = boxes[:, 2], boxes[:, 3]
     reach_x, reach_y = (margin * w, margin * h) if size is None else (margin * np.maximum(w, size[0]),
                                                                        margin * np.maximum(h, size[1]))
-    return (x <= reach_x) | (y <= reach_y) | (x + w >= width - reach_x) | (y + h >= height - reach_y)
+    return border_sides(boxes, width, height, reach_x, reach_y).any(axis=1)
+
+
+def border_sides(boxes: np.ndarray, width: float, height: float, reach_x: np.ndarray | float,
+                 reach_y: np.ndarray | float) -> np.ndarray:
+    """(N, 4) bool: per box ``(x, y, w, h)``, whether it lies within ``reach_x`` (``reach_y``) px
+    of the left, top, right and bottom border of a ``width`` x ``height`` image (which borders
+    :func:`reaches_border` is about)."""
+    x, y, w, h = boxes.T
+    return np.column_stack([x <= reach_x, y <= reach_y, x + w >= width - reach_x, y + h >= height - reach_y])
 
 
 def region_boxes_reach_border(boxes: np.ndarray, width: float, height: float, margin: float = 0.25,

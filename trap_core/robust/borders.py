@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
 
-from trap_core.clustering import Track, box_centres, in_rows, reaches_border, track_pieces
+from trap_core.clustering import Track, border_sides, box_centres, in_rows, reaches_border, track_pieces
 from trap_core.robust.gaps import with_inferred
 
 SIZE_RATIO = 1.25  # a box in view this much smaller than the track's usual one may be of a cut part
@@ -137,7 +137,7 @@ def end_at_exits(track: Track, width: float, height: float, min_gap: int, leavin
     """
     boxes = track.boxes.astype(float)
     w, h = boxes[:, 2], boxes[:, 3]
-    sides = _on_sides(boxes, width, height, 0.5, 0.5)
+    sides = border_sides(boxes, width, height, 0.5, 0.5)
     whole = ~sides.any(axis=1)
     if not whole.any() or boxes.shape[0] <= leaving:
         return track
@@ -221,23 +221,15 @@ def _coming_in(boxes: np.ndarray, piece_rows: list[np.ndarray], width: float, he
         return np.zeros(0, dtype=np.int64)
     first = np.array([rows[0] for rows in piece_rows], dtype=np.int64)
     later = np.array([rows[min(ahead, rows.size - 1)] for rows in piece_rows], dtype=np.int64)
-    near = _on_sides(boxes[first], width, height, np.maximum(boxes[first, 2], usual[0]),
+    near = border_sides(boxes[first], width, height, np.maximum(boxes[first, 2], usual[0]),
                      np.maximum(boxes[first, 3], usual[1]))
     away = _toward_sides(box_centres(boxes[first]) - box_centres(boxes[later]))
     return first[(near & away).any(axis=1)]
 
 
-def _on_sides(boxes: np.ndarray, width: float, height: float, reach_x: np.ndarray | float,
-              reach_y: np.ndarray | float) -> np.ndarray:
-    """(n, 4) bool: per box ``(x, y, w, h)``, whether it lies within ``reach_x`` (``reach_y``) px
-    of the left, top, right and bottom border of a ``width`` x ``height`` image."""
-    x, y, w, h = boxes.T
-    return np.column_stack([x <= reach_x, y <= reach_y, x + w >= width - reach_x, y + h >= height - reach_y])
-
-
 def _toward_sides(step: np.ndarray) -> np.ndarray:
     """(n, 4) bool: per (dx, dy) ``step``, whether it goes toward the left, top, right and bottom
-    border (the columns of :func:`_on_sides`)."""
+    border (the columns of :func:`~trap_core.clustering.border_sides`)."""
     return np.column_stack([-step[:, 0], -step[:, 1], step[:, 0], step[:, 1]]) > 0
 
 

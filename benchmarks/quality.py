@@ -479,7 +479,7 @@ LATER = [  # drawn at random (generators 20261129-20261131) in session 53, befor
 MAX_KEY = 200  # characters of a cached video's file name (scenes with many settings have longer keys)
 # Graph parameters with no effect on exact-colour regions.
 FELZENSZWALB_ONLY = ("k", "max_regions", "sigma", "min_size", "threshold", "connectivity", "mean_gap",
-                     "colour_space")
+                     "colour_space", "chroma_weight")
 SETS = {"analogues": ANALOGUES, "tuned": TUNED, "held-out": HELD_OUT, "larger": LARGER, "camera": CAMERA,
         "shapes": SHAPES, "recent": RECENT, "fresh": FRESH,
         "newest": NEWEST, "untouched": UNTOUCHED, "latest": LATEST, "unseen": UNSEEN, "blind": BLIND,

@@ -307,7 +307,7 @@ def test_a_textured_frame_gets_the_least_k_that_cuts_it_into_at_most_max_regions
 
     from trap_core.pipeline import TrapParams, fitted_to_regions, frame_graph
     rgb = textured_frames[0]
-    params = TrapParams(max_regions=50)
+    params = TrapParams(max_regions=50)  # the chroma weight fitted where fitting k needs it, not returned
     assert frame_graph(rgb, params).n_nodes > 3 * params.max_regions
     fitted = fitted_to_regions(rgb, params)
     assert fitted.k > params.k and dataclasses.replace(fitted, k=params.k) == params  # only k changes
@@ -323,7 +323,7 @@ def test_a_textured_frame_gets_the_least_k_that_cuts_it_into_at_most_max_regions
 def test_every_frame_of_a_stream_is_cut_with_the_k_fitted_to_its_first(textured_frames: list) -> None:
     from trap_core.pipeline import TrapParams, fitted_to_regions, frame_graph, graphs_of
     textured, plain = textured_frames[0], np.full((120, 160, 3), 90, np.uint8)
-    params = TrapParams(max_regions=50, threads=2)
+    params = TrapParams(max_regions=50, threads=2, chroma_weight=1.0)  # k alone is fitted
     reported: list[tuple[TrapParams, list[str]]] = []
     frames = [textured, plain, textured, textured]
     graphs = list(graphs_of(frames, params, lambda used, notes: reported.append((used, notes))))
@@ -336,7 +336,8 @@ def test_every_frame_of_a_stream_is_cut_with_the_k_fitted_to_its_first(textured_
     assert len(reported) == 1 and reported[0][0] == params  # fitted on a plain first frame: k as given
     assert reported[0][1][0].startswith("segmentation: the first frame has only 1 region")  # and the user is told
     reported.clear()
-    list(graphs_of([textured, plain], TrapParams(threads=2), lambda used, notes: reported.append((used, notes))))
+    list(graphs_of([textured, plain], TrapParams(threads=2, chroma_weight=1.0),
+                   lambda used, notes: reported.append((used, notes))))
     assert reported == []  # within max_regions and not too few: nothing to tell
 
 
@@ -362,7 +363,7 @@ def test_a_first_frame_of_few_felzenszwalb_regions_gets_a_warning(textured_frame
     smooth = np.zeros((120, 160, 3), np.uint8)
     smooth[:, :, 0] = np.linspace(0, 255, 160, dtype=np.uint8)  # a ramp cut into a few bands
     smooth[40:80, 60:100] = (20, 200, 20)
-    params = TrapParams()
+    params = TrapParams(chroma_weight=1.0)
     graph = frame_graph(smooth, params)
     assert graph.n_nodes < 40
     assert first_frame_setup(smooth, params) == (params, [
@@ -372,6 +373,29 @@ def test_a_first_frame_of_few_felzenszwalb_regions_gets_a_warning(textured_frame
     assert first_frame_setup(textured_frames[0], params) == (params, [])
     plain = np.full((120, 160, 3), 90, np.uint8)
     assert "the first frame has only 1 region at k 7:" in first_frame_setup(plain, params)[1][0]
+
+
+def test_a_chroma_weight_of_zero_is_fitted_on_the_first_frame_for_the_whole_video() -> None:
+    """``chroma_weight`` 0 asks for the weight to be fitted; the video's parameters then hold it, the
+    user is told, and the graphs are those of that weight. It is fitted on the frame at its own
+    size: scaled up to the working size by nearest pixels, most neighbours repeat one pixel and
+    nothing seems to vary."""
+    from trap_core.pipeline import TrapParams, first_frame_setup, frame_graph
+    from trap_core.segmentation import fitted_chroma_weight
+    rng = np.random.default_rng(5)
+    grey_texture = np.clip(110 + rng.normal(0, 6, (120, 160))[..., None].repeat(3, axis=2), 0, 255)
+    grey_texture[40:80, 60:100] += (25, -8, -8)  # a reddish patch about as bright as the ground
+    frame = np.clip(grey_texture, 0, 255).astype(np.uint8)
+    used, notes = first_frame_setup(frame, TrapParams())
+    assert fitted_chroma_weight(cv2.resize(frame, (640, 480), interpolation=cv2.INTER_NEAREST)) == 1.0
+    assert used.chroma_weight == fitted_chroma_weight(frame) == 2.0 and used.k == 7.0
+    assert notes[0] == ("segmentation: chroma weighed 2.00 times brightness in colour distances, fitted on the first "
+                        "frame (chroma_weight)")
+    assert frame_graph(frame, used).n_nodes != frame_graph(frame, TrapParams(chroma_weight=1.0)).n_nodes
+    assert frame_graph(frame, TrapParams()).n_nodes == frame_graph(frame, used).n_nodes  # a frame alone: its own
+    assert first_frame_setup(frame, TrapParams(chroma_weight=1.0))[0].chroma_weight == 1.0  # the colour space's
+    assert first_frame_setup(frame, TrapParams(segmentation="colour", chroma_weight=0.0, max_regions=0))[0] == \
+        TrapParams(segmentation="colour", chroma_weight=0.0, max_regions=0)  # exact colours weigh no distances
 
 
 def test_exact_colour_regions_are_refused_on_a_noisy_first_frame() -> None:
@@ -387,7 +411,7 @@ def test_exact_colour_regions_are_refused_on_a_noisy_first_frame() -> None:
                                                 r"\(limit 20 x max_regions = 9600\).*use segmentation:=felzenszwalb$"):
         list(graphs_of([noisy.rgb, clean.rgb], colour))
     assert first_frame_setup(noisy.rgb, TrapParams(segmentation="colour", max_regions=0))[0].max_regions == 0  # off
-    assert first_frame_setup(noisy.rgb, TrapParams())[0] == TrapParams()  # Felzenszwalb regions: no complaint
+    assert first_frame_setup(noisy.rgb, TrapParams(chroma_weight=1.0))[1] == []  # Felzenszwalb regions: no complaint
 
 
 def test_occurrences_nodes_in_one_pass_are_the_faces_nodes_one_by_one() -> None:

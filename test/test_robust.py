@@ -2837,11 +2837,12 @@ def test_discs_on_a_cat_cut_by_its_backdrop_only_are_tracks() -> None:
     edge, so each disc's patterns are seen cut by the view. Placed and boxed without the
     backdrop they are whole and move steadily, and no other track goes where they go: the discs
     are tracks (none were before), clustered again without the backdrop (with it, their paths
-    are pulled to the middle of the view and one cluster held all three discs)."""
+    are pulled to the middle of the view and one cluster held all three discs). RGB distances (chroma
+    weight 1): the scene is the backdrop they cut; the weight fitted to the cat (2) cuts it otherwise."""
     from trap_core.evaluation import match_objects
     from trap_core.rag import StackedGraphs
     from trap_core.robust import CUT_SHARE, border_share, without_backdrop
-    params = TrapParams(segmentation="felzenszwalb")
+    params = TrapParams(segmentation="felzenszwalb", chroma_weight=1.0)
     graphs, truth = synthetic_graphs(SceneConfig(frames=150, seed=15, shape="disc", identical=True,
                                                  background="chelsea"), params)
     result = track(graphs, params)

@@ -10,8 +10,9 @@ import skimage.data
 from scipy import ndimage as ndi
 from skimage.segmentation import felzenszwalb as skimage_felzenszwalb
 
-from trap_core.segmentation import SegmentationError, colour_components, felzenszwalb
+from trap_core.segmentation import SegmentationError, colour_components, felzenszwalb, fitted_chroma_weight
 from trap_core.segmentation._kernels import felzenszwalb_kernel, relabel_4connected
+from trap_core.segmentation.felzenszwalb import MAX_CHROMA_WEIGHT
 from trap_core.synthetic import SceneConfig, build_world, render
 
 NATURAL = ("astronaut", "coffee", "chelsea", "rocket")
@@ -89,6 +90,39 @@ def test_lab_distances_weigh_a_grey_step_as_rgb_and_a_hue_change_more() -> None:
     labels, n = felzenszwalb(image, k=40, sigma=0, min_size=0, colour_space="lab")
     assert n == 2 and labels[0, 0] == labels[0, -1] != labels[20, 60]
     assert felzenszwalb(image, k=30, sigma=0, min_size=0, colour_space="lab")[1] == 3  # the grey step: 35.2 > 30
+
+
+def test_a_chroma_weight_keeps_a_hue_patch_apart_from_a_grey_ground_of_its_brightness() -> None:
+    """The reddish patch of the test above, 33.2 RGB units from the lighter grey, lies 32.8 units
+    along chroma and 5.8 along brightness: at weight 2 it is 66.0 away, and k 40 keeps it apart
+    while the grey step (all brightness, 34.6) still merges. Weight 1 is RGB exactly."""
+    image = np.full((40, 80, 3), 100, dtype=np.uint8)
+    image[:, 40:] = 120
+    image[10:30, 50:70] = (150, 110, 110)
+    rgb = felzenszwalb(image, k=40, sigma=0.8, min_size=0)
+    assert rgb[1] == 1
+    assert all(np.array_equal(a, b) for a, b in zip(rgb, felzenszwalb(image, k=40, sigma=0.8, min_size=0,
+                                                                       chroma_weight=1.0)))
+    labels, n = felzenszwalb(image, k=40, sigma=0, min_size=0, chroma_weight=2.0)
+    assert n == 2 and labels[0, 0] == labels[0, -1] != labels[20, 60]
+
+
+def test_fitted_chroma_weight_follows_how_much_less_chroma_varies_than_brightness() -> None:
+    """Noise drawn in each channel apart varies chroma as much as brightness: weight 1. Grey
+    texture (the same noise in every channel) does not vary chroma at all: the cap. Between
+    them, the weight is the ratio of the spreads."""
+    rng = np.random.default_rng(3)
+    base = np.full((120, 160, 3), 128.0)
+    per_channel = base + rng.normal(0, 6, base.shape)
+    grey_texture = base + rng.normal(0, 6, base.shape[:2])[..., None]
+    assert fitted_chroma_weight(np.clip(per_channel, 0, 255).astype(np.uint8)) == pytest.approx(1.0, abs=0.1)
+    assert fitted_chroma_weight(np.clip(grey_texture, 0, 255).astype(np.uint8)) == MAX_CHROMA_WEIGHT
+    # grey noise of 4 in each channel spreads brightness by 6.9: ratios 1.15, 1.32 and 1.53
+    weights = [fitted_chroma_weight(np.clip(base + rng.normal(0, 4, base.shape[:2])[..., None]
+                                            + rng.normal(0, spread, base.shape), 0, 255).astype(np.uint8))
+               for spread in (12, 8, 6)]
+    assert weights == pytest.approx([1.15, 1.32, 1.53], abs=0.08)
+    assert fitted_chroma_weight(np.full((10, 10, 3), 50, dtype=np.uint8)) == 1.0  # nothing varies: RGB
 
 
 def test_regions_are_four_connected_and_compact() -> None:
@@ -178,6 +212,7 @@ def test_two_threads_give_the_same_labels() -> None:
     (dict(threshold="median"), "threshold must be"), (dict(k=-1), "k >= 0"),
     (dict(sigma=float("nan")), "sigma >= 0"), (dict(connectivity=6), "connectivity"),
     (dict(mean_gap=-1.0), "mean_gap >= 0"), (dict(colour_space="hsv"), "colour_space must be"),
+    (dict(chroma_weight=0.0), "chroma_weight must be > 0"),
 ])
 def test_bad_parameters(kwargs: dict, pattern: str) -> None:
     with pytest.raises(SegmentationError, match=pattern):

@@ -18,7 +18,7 @@ from trap_core.ordered import in_order
 from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, build_plane_graph
 from trap_core.robust.image_steps import image_step
-from trap_core.segmentation import SegmentationError, colour_components, felzenszwalb
+from trap_core.segmentation import SegmentationError, colour_components, felzenszwalb, fitted_chroma_weight
 from trap_core.synthetic import RenderedFrame, SceneConfig, render
 
 FEW_REGIONS = 40  # a first frame with fewer Felzenszwalb regions than this gets a warning (first_frame_setup)
@@ -40,6 +40,7 @@ def frame_graph(rgb: np.ndarray, params: TrapParams, previous: np.ndarray | None
     the frame's own pixels.
     """
     height, width = rgb.shape[:2]
+    params = _chroma_weighed(rgb, params)
     small = _working_size(rgb, params)
     labels, n = _regions(small, params)
     graph = build_plane_graph(labels, n, small, params.colour_bins, params.contact_tolerance)
@@ -52,7 +53,7 @@ def frame_regions(rgb: np.ndarray, params: TrapParams) -> tuple[np.ndarray, int]
     """Region label of each pixel of ``rgb`` at the size it is segmented (:func:`frame_graph`:
     longer side at ``params.max_side``), and their count: what the plane graph is built on, for
     measures of the segmentation itself (``benchmarks/region_leak.py``)."""
-    return _regions(_working_size(rgb, params), params)
+    return _regions(_working_size(rgb, params), _chroma_weighed(rgb, params))
 
 
 def fitted_to_regions(rgb: np.ndarray, params: TrapParams) -> TrapParams:
@@ -67,13 +68,15 @@ def fitted_to_regions(rgb: np.ndarray, params: TrapParams) -> TrapParams:
     first frame, so that regions stay comparable from frame to frame: the smallest that meets
     the limit, within 2 % (bisection on a log scale).
     """
-    return _fitted(rgb, params)[0]
+    k = _fitted(rgb, _chroma_weighed(rgb, params))[0].k
+    return params if k == params.k else dataclasses.replace(params, k=k)
 
 
 def first_frame_setup(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, list[str]]:
     """The segmentation parameters of a whole video, from its first frame ``rgb``
-    (:func:`fitted_to_regions`), and the lines to tell the user about them: that ``k`` was
-    raised, and that the first frame has fewer than ``FEW_REGIONS`` Felzenszwalb regions.
+    (:func:`fitted_chroma_weight` where ``chroma_weight`` is 0, then :func:`fitted_to_regions`),
+    and the lines to tell the user about them: the chroma weight, that ``k`` was raised, and that
+    the first frame has fewer than ``FEW_REGIONS`` Felzenszwalb regions.
 
     Exact-colour regions (``segmentation: colour``) are made for lossless synthetic frames, where a
     drawn region is one colour (~250 regions a frame). On noisy or compressed frames (JPEG) nearly
@@ -97,9 +100,13 @@ def first_frame_setup(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, 
                 f"segmentation colour: the first frame has {count} exact-colour regions (limit {COLOUR_EXCESS} x "
                 f"max_regions = {COLOUR_EXCESS * params.max_regions}): its colours are noisy or compressed; "
                 f"use segmentation:=felzenszwalb")
-    used, count = _fitted(rgb, params)
     notes = []
-    if used != params:
+    weighed = _chroma_weighed(rgb, params)
+    if weighed != params:
+        notes.append(f"segmentation: chroma weighed {weighed.chroma_weight:.2f} times brightness in colour distances, "
+                     f"fitted on the first frame (chroma_weight)")
+    used, count = _fitted(rgb, weighed)
+    if used.k != params.k:
         notes.append(f"segmentation: k raised from {params.k:g} to {used.k:g}: the first frame had more than "
                      f"{params.max_regions} regions (max_regions)")
     if count is not None and count < FEW_REGIONS:
@@ -107,6 +114,16 @@ def first_frame_setup(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, 
         notes.append(f"segmentation: the first frame has only {regions} at k {used.k:g}: objects may share giant "
                      f"regions with the background and go untracked; a smaller k (-p k:={used.k / 2:g}) cuts finer")
     return used, notes
+
+
+def _chroma_weighed(rgb: np.ndarray, params: TrapParams) -> TrapParams:
+    """``params`` with a ``chroma_weight`` of 0 (fit it) replaced by the one fitted on ``rgb``
+    (:func:`fitted_chroma_weight`). A video's is fitted on its first frame (:func:`first_frame_setup`);
+    a frame given on its own gets its own. At the frame's own size: scaled up by nearest pixels,
+    most neighbours would repeat one pixel and nothing would seem to vary."""
+    if params.segmentation != "felzenszwalb" or params.chroma_weight != 0:
+        return params
+    return dataclasses.replace(params, chroma_weight=fitted_chroma_weight(rgb, params.colour_space))
 
 
 def _fitted(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, int | None]:
@@ -153,7 +170,7 @@ def _regions(small: np.ndarray, params: TrapParams) -> tuple[np.ndarray, int]:
         return colour_components(small)
     return felzenszwalb(small, k=params.k, sigma=params.sigma, min_size=params.min_size,
                         threshold=params.threshold, connectivity=params.connectivity, mean_gap=params.mean_gap,
-                        colour_space=params.colour_space)
+                        colour_space=params.colour_space, chroma_weight=params.chroma_weight)
 
 
 def _in_frame_pixels(graph: PlaneGraph, scale_x: float, scale_y: float) -> PlaneGraph:

@@ -13,7 +13,7 @@ SEGMENTATIONS = ("felzenszwalb", "colour")
 METHODS = ("paper", "robust")
 # Which node needs which parameters (the segmentation node: stages 1-2; the mining node: 3-7).
 GRAPH_STAGE = ("segmentation", "k", "max_regions", "sigma", "min_size", "threshold", "connectivity", "mean_gap",
-               "colour_space", "max_side", "colour_bins", "contact_tolerance", "threads")
+               "colour_space", "chroma_weight", "max_side", "colour_bins", "contact_tolerance", "threads")
 # What the segmentation node also reads: whether tracking will take the camera's steps from the
 # images (:attr:`TrapParams.reads_image_steps`); the graph stage reads them only then.
 IMAGE_STEP_STAGE = ("method", "image_motion", "min_speed", "grow", "still_regions")
@@ -49,6 +49,11 @@ class TrapParams:
     colour_space: str = _p("rgb", "Felzenszwalb: colour distances in rgb (paper) or lab (CIELAB, scaled so that steps "
                                   "between greys weigh as in rgb: a hue change at one brightness is not outweighed "
                                   "by the brightness steps of texture; ours)")
+    chroma_weight: float = _p(0.0, "Felzenszwalb: weight of the chroma axes against brightness in colour distances "
+                                   "(ours): 0 fits it on the first frame, for the whole video, to the ratio of "
+                                   "brightness to chroma spread between neighbouring pixels, within 1..2 "
+                                   "(compressed footage and textured ground vary little in chroma, noise of each "
+                                   "channel as much as in brightness); 1 keeps the colour space's (paper)")
     max_side: int = _p(640, "px: frames are segmented with their longer side scaled to this (down, or up for smaller "
                             "frames), so objects get as many regions as at the size the defaults were made for; "
                             "results stay in the frame's pixels (ours); 0 = each frame at its own size")
@@ -189,8 +194,8 @@ class TrapParams:
             (self.colour_space in COLOUR_SPACES, f"colour_space must be one of {COLOUR_SPACES}"),
             (self.method in METHODS, f"method must be one of {METHODS}"),
             (self.linkage in LINKAGES, f"linkage must be one of {LINKAGES}"),
-            (self.k >= 0 and self.sigma >= 0 and self.min_size >= 0 and self.mean_gap >= 0,
-             "k, sigma, min_size and mean_gap must be >= 0"),
+            (self.k >= 0 and self.sigma >= 0 and self.min_size >= 0 and self.mean_gap >= 0 and self.chroma_weight >= 0,
+             "k, sigma, min_size, mean_gap and chroma_weight must be >= 0"),
             (self.max_regions == 0 or self.max_regions >= 16, "max_regions must be 0 (off) or at least 16"),
             (self.connectivity in (4, 8), "connectivity must be 4 or 8"),
             (1 <= self.colour_bins <= 256, "colour_bins must be within 1..256"),

@@ -222,7 +222,7 @@ def _coming_in(boxes: np.ndarray, piece_rows: list[np.ndarray], width: float, he
     first = np.array([rows[0] for rows in piece_rows], dtype=np.int64)
     later = np.array([rows[min(ahead, rows.size - 1)] for rows in piece_rows], dtype=np.int64)
     near = border_sides(boxes[first], width, height, np.maximum(boxes[first, 2], usual[0]),
-                     np.maximum(boxes[first, 3], usual[1]))
+                        np.maximum(boxes[first, 3], usual[1]))
     away = _toward_sides(box_centres(boxes[first]) - box_centres(boxes[later]))
     return first[(near & away).any(axis=1)]
 

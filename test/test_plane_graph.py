@@ -330,6 +330,7 @@ def test_every_frame_of_a_stream_is_cut_with_the_k_fitted_to_its_first(textured_
     fitted = fitted_to_regions(textured, params)
     assert reported == [(fitted, [f"segmentation: k raised from 7 to {fitted.k:g}: the first frame had more than 50 "
                                   "regions (max_regions)"])]
+    assert not reported[0][1][0].warns
     assert [g.n_nodes for g in graphs] == [frame_graph(f, fitted).n_nodes for f in frames]
     reported.clear()
     list(graphs_of([plain, textured], params, lambda used, notes: reported.append((used, notes))))
@@ -372,7 +373,8 @@ def test_a_first_frame_of_few_felzenszwalb_regions_gets_a_warning(textured_frame
     assert first_frame_setup(smooth, TrapParams(segmentation="colour")) == (TrapParams(segmentation="colour"), [])
     assert first_frame_setup(textured_frames[0], params) == (params, [])
     plain = np.full((120, 160, 3), 90, np.uint8)
-    assert "the first frame has only 1 region at k 7:" in first_frame_setup(plain, params)[1][0]
+    note = first_frame_setup(plain, params)[1][0]
+    assert "the first frame has only 1 region at k 7:" in note and note.warns  # the tracks may suffer: a warning
 
 
 def test_a_chroma_weight_of_zero_is_fitted_on_the_first_frame_for_the_whole_video() -> None:
@@ -391,6 +393,7 @@ def test_a_chroma_weight_of_zero_is_fitted_on_the_first_frame_for_the_whole_vide
     assert used.chroma_weight == fitted_chroma_weight(frame) == 2.0 and used.k == 7.0
     assert notes[0] == ("segmentation: chroma weighed 2.00 times brightness in colour distances, fitted on the first "
                         "frame (chroma_weight)")
+    assert not notes[0].warns  # a parameter fitted: information, not a warning
     assert frame_graph(frame, used).n_nodes != frame_graph(frame, TrapParams(chroma_weight=1.0)).n_nodes
     assert frame_graph(frame, TrapParams()).n_nodes == frame_graph(frame, used).n_nodes  # a frame alone: its own
     assert first_frame_setup(frame, TrapParams(chroma_weight=1.0))[0].chroma_weight == 1.0  # the colour space's

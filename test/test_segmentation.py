@@ -123,6 +123,8 @@ def test_fitted_chroma_weight_follows_how_much_less_chroma_varies_than_brightnes
                for spread in (12, 8, 6)]
     assert weights == pytest.approx([1.15, 1.32, 1.53], abs=0.08)
     assert fitted_chroma_weight(np.full((10, 10, 3), 50, dtype=np.uint8)) == 1.0  # nothing varies: RGB
+    with pytest.raises(SegmentationError, match="colour_space must be one of"):
+        fitted_chroma_weight(np.full((10, 10, 3), 50, dtype=np.uint8), "hsv")  # not weighed on RGB's axes unasked
 
 
 def test_regions_are_four_connected_and_compact() -> None:

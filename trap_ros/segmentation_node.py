@@ -72,8 +72,8 @@ class SegmentationNode(Node):
                     self.error = str(error)
                     self.get_logger().error(self.error)
                     return
-                for note in notes:
-                    self.get_logger().warning(note)
+                for note in notes:  # a fitted parameter is information; a scene that may go untracked, a warning
+                    (self.get_logger().warning if note.warns else self.get_logger().info)(note)
             self.pending.append((self.pool.submit(frame_graph, rgb, self.params, self.previous), message.header))
             self.previous = rgb if self.params.reads_image_steps else None
             self._publish_ready(block=len(self.pending) > 2 * self.params.threads)

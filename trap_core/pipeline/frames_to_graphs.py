@@ -72,11 +72,26 @@ def fitted_to_regions(rgb: np.ndarray, params: TrapParams) -> TrapParams:
     return params if k == params.k else dataclasses.replace(params, k=k)
 
 
-def first_frame_setup(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, list[str]]:
+class SetupNote(str):
+    """A line of :func:`first_frame_setup` for the user. ``warns``: the tracks may suffer from
+    what it tells (a giant-region scene), so a node logs it as a warning; otherwise it tells of a
+    parameter fitted to the video (information). A ``str``, so that it prints and compares as its
+    text."""
+
+    warns: bool
+
+    def __new__(cls, text: str, warns: bool = False) -> SetupNote:
+        note = super().__new__(cls, text)
+        note.warns = warns
+        return note
+
+
+def first_frame_setup(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, list[SetupNote]]:
     """The segmentation parameters of a whole video, from its first frame ``rgb``
     (:func:`fitted_chroma_weight` where ``chroma_weight`` is 0, then :func:`fitted_to_regions`),
-    and the lines to tell the user about them: the chroma weight, that ``k`` was raised, and that
-    the first frame has fewer than ``FEW_REGIONS`` Felzenszwalb regions.
+    and the lines to tell the user about them (:class:`SetupNote`): the chroma weight, that ``k``
+    was raised, and (a warning) that the first frame has fewer than ``FEW_REGIONS`` Felzenszwalb
+    regions.
 
     Exact-colour regions (``segmentation: colour``) are made for lossless synthetic frames, where a
     drawn region is one colour (~250 regions a frame). On noisy or compressed frames (JPEG) nearly
@@ -100,19 +115,20 @@ def first_frame_setup(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, 
                 f"segmentation colour: the first frame has {count} exact-colour regions (limit {COLOUR_EXCESS} x "
                 f"max_regions = {COLOUR_EXCESS * params.max_regions}): its colours are noisy or compressed; "
                 f"use segmentation:=felzenszwalb")
-    notes = []
+    notes: list[SetupNote] = []
     weighed = _chroma_weighed(rgb, params)
     if weighed != params:
-        notes.append(f"segmentation: chroma weighed {weighed.chroma_weight:.2f} times brightness in colour distances, "
-                     f"fitted on the first frame (chroma_weight)")
+        notes.append(SetupNote(f"segmentation: chroma weighed {weighed.chroma_weight:.2f} times brightness in colour "
+                               f"distances, fitted on the first frame (chroma_weight)"))
     used, count = _fitted(rgb, weighed)
     if used.k != params.k:
-        notes.append(f"segmentation: k raised from {params.k:g} to {used.k:g}: the first frame had more than "
-                     f"{params.max_regions} regions (max_regions)")
+        notes.append(SetupNote(f"segmentation: k raised from {params.k:g} to {used.k:g}: the first frame had more "
+                               f"than {params.max_regions} regions (max_regions)"))
     if count is not None and count < FEW_REGIONS:
         regions = f"{count} region" + ("s" if count != 1 else "")
-        notes.append(f"segmentation: the first frame has only {regions} at k {used.k:g}: objects may share giant "
-                     f"regions with the background and go untracked; a smaller k (-p k:={used.k / 2:g}) cuts finer")
+        notes.append(SetupNote(f"segmentation: the first frame has only {regions} at k {used.k:g}: objects may share "
+                               f"giant regions with the background and go untracked; a smaller k "
+                               f"(-p k:={used.k / 2:g}) cuts finer", warns=True))
     return used, notes
 
 
@@ -195,7 +211,7 @@ def _last_pixel(last: np.ndarray, scale: float) -> np.ndarray:
 
 
 def graphs_of(frames: Iterable[np.ndarray], params: TrapParams,
-              told: Callable[[TrapParams, list[str]], None] | None = None,
+              told: Callable[[TrapParams, list[SetupNote]], None] | None = None,
               image_steps: bool | None = None) -> Iterator[PlaneGraph]:
     """Plane graph of each frame, in order, with the parameters :func:`first_frame_setup` gives
     on the first frame and the camera's step from the frame before (:func:`frame_graph`) where

@@ -87,8 +87,7 @@ def felzenszwalb(rgb: np.ndarray, k: float = 7.0, sigma: float = 0.8, min_size: 
             and np.isfinite(mean_gap) and mean_gap >= 0):
         raise SegmentationError(f"need k >= 0, sigma >= 0, min_size >= 0, mean_gap >= 0 (got k={k}, "
                                 f"sigma={sigma}, min_size={min_size}, mean_gap={mean_gap})")
-    if colour_space not in COLOUR_SPACES:
-        raise SegmentationError(f"colour_space must be one of {COLOUR_SPACES}, not {colour_space!r}")
+    _check_colour_space(colour_space)
     if not (np.isfinite(chroma_weight) and chroma_weight > 0):
         raise SegmentationError(f"chroma_weight must be > 0, not {chroma_weight}")
     _check_frame(rgb)
@@ -109,6 +108,11 @@ def felzenszwalb(rgb: np.ndarray, k: float = 7.0, sigma: float = 0.8, min_size: 
 def _check_frame(rgb: np.ndarray) -> None:
     if rgb.ndim != 3 or rgb.shape[0] == 0 or rgb.shape[1] == 0 or rgb.shape[2] != 3:
         raise SegmentationError(f"expected an (H, W, 3) image, got shape {rgb.shape}")
+
+
+def _check_colour_space(colour_space: str) -> None:
+    if colour_space not in COLOUR_SPACES:
+        raise SegmentationError(f"colour_space must be one of {COLOUR_SPACES}, not {colour_space!r}")
 
 
 def _colour_axes(rgb: np.ndarray, colour_space: str) -> np.ndarray:
@@ -135,6 +139,7 @@ def fitted_chroma_weight(rgb: np.ndarray, colour_space: str = "rgb") -> float:
     every axis in units of what varies within a surface. The cap keeps a frame with no chroma
     variation at all (grey texture) from weighing the least chroma change without bound.
     """
+    _check_colour_space(colour_space)
     _check_frame(rgb)
     image = _colour_axes(rgb, colour_space)
     steps = np.concatenate([(image[:, 1:] - image[:, :-1]).reshape(-1, 3),

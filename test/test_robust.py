@@ -1934,6 +1934,42 @@ def test_lookalikes_that_turn_where_they_pass_keep_their_tracks_if_their_boxes_n
     np.testing.assert_allclose(out[1].boxes[late], on_lane[late])
 
 
+def test_lookalikes_that_passed_through_each_other_while_their_tracks_stalled_get_them_back() -> None:
+    """Two 33x77 look-alike people cross at frame 50 (P right and up, Q left); P turns up and left
+    in frame 56. While they overlap (frames 44-62) each track stalls on its own side of the
+    blend, 36-48 px from the other (the boxes never overlap), and leaves it on the object that
+    is on that side then: the other one. Each track's line before the meeting joins the other's
+    line after at its middle frame, its own line after does not: they passed through each other,
+    and each track gets its own object back. Where two objects meet head on and both turn back
+    there (each track keeps its own), the lines join either way and nothing is exchanged: the
+    motions alone cannot tell that from passing through."""
+    from trap_core.robust import swap_at_crossings
+    t = np.arange(100, dtype=float)[:, None]
+    p = np.where(t <= 56, [250.0, 200.0] + (t - 50) * [3.0, -2.0], [268.0, 188.0] + (t - 56) * [-1.0, -2.0])
+    q = [250.0, 200.0] + (t - 50) * [-3.0, 0.0]
+    size = np.tile([33.0, 77.0], (100, 1))
+
+    def stalled(start: np.ndarray, end: np.ndarray) -> np.ndarray:
+        """On ``start`` until frame 44, drifting to where ``end`` is in frame 62, then on ``end``."""
+        out = np.where(t < 44, start, end)
+        out[44:62] = start[44] + ((t[44:62] - 44) / 18) * (end[62] - start[44])
+        return np.hstack([out - size / 2, size])
+
+    frames = np.arange(100)
+    alike = np.ones((2, 2), dtype=bool)
+    tracks = [_as_track(1, frames, stalled(p, q)), _as_track(2, frames, stalled(q, p))]
+    out = swap_at_crossings(tracks, 100, 8, alike)
+    away = np.abs(t[:, 0] - 53) > 9
+    np.testing.assert_allclose(out[0].boxes[away], np.hstack([p - size / 2, size])[away])
+    np.testing.assert_allclose(out[1].boxes[away], np.hstack([q - size / 2, size])[away])
+    back = np.abs(t - 50) * [3.0, 0.0]  # head on, and both turn back where they meet
+    p_back, q_back = [250.0, 200.0] - back, [250.0, 200.0] + back
+    bounced = [_as_track(1, frames, stalled(p_back, p_back)), _as_track(2, frames, stalled(q_back, q_back))]
+    out = swap_at_crossings(bounced, 100, 8, alike)
+    np.testing.assert_allclose(out[0].boxes, bounced[0].boxes)
+    np.testing.assert_allclose(out[1].boxes, bounced[1].boxes)
+
+
 def test_lookalikes_whose_boxes_glided_onto_each_others_object_get_them_back() -> None:
     """Two 40x30 look-alikes pass each other 30 px apart (P right, Q left, at x 200 in frame
     50). Over frames 46-54 each track's box glides across to the other object (x stays, y

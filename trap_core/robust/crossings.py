@@ -48,9 +48,10 @@ SAME_OBJECT_IOU = 0.5
 # Two straight lines join where, at a meeting's middle frame, they are at most this share of the
 # smaller usual size apart. Over 987 meetings of look-alike tracks in quality.py (read before any
 # exchange, labelled by the ground truth), lines on either side of a meeting joined for the
-# exchanged pairing and not for the tracks' own only where the tracks had traded objects (four
-# meetings: two traded, two the same trade read across a larger meeting), at any share from 0.15
-# to 0.25; at 0.5, one that the tracks left each on its own object passed.
+# exchanged pairing and not for the tracks' own in four meetings: three where the tracks had traded
+# objects (two of them exchanged at a cut already) and one that overlaps a trade's meeting (taken,
+# it put that trade right); the same at any share from 0.15 to 0.25. At 0.5, one that the tracks
+# had left each on its own object passed too.
 JOINED = 0.25
 
 
@@ -116,15 +117,14 @@ def swap_at_crossings(tracks: Sequence[Track], n_frames: int, window: int, alike
     joins the other's line after and not its own (within ``JOINED`` times the smaller size), and
     the exchanged pairing breaks the motions less. Where the lines join either way (head on, or
     one turning just where they meet), the motions cannot tell a crossing from two objects that
-    turned back, and nothing is exchanged. The pairs are looked at again
-    until a pass over them exchanges nothing: an exchange changes what both tracks hold after
-    its cut, and so their meetings with the others (where three look-alikes crowd, one pair's
-    trade may show only once another pair's is put right). A pair is not cut again within
-    ``window`` frames of a cut it was exchanged at: the lines there read that seam (an exchange
-    made halfway across a blend leaves its frames to either track), and two cuts a few frames
-    apart would exchange the tracks back and forth from pass to pass. Where three look-alikes
-    leave a crowd each on the next one's object, no exchange of two tracks puts any of them right
-    (:func:`_exchange_cycles`).
+    turned back, and nothing is exchanged. The pairs are looked at again until a pass over them
+    exchanges nothing: an exchange changes what both tracks hold after its cut, and so their
+    meetings with the others (where three look-alikes crowd, one pair's trade may show only once
+    another pair's is put right). A pair is not cut again within ``window`` frames of a cut it
+    was exchanged at: the lines there read that seam (an exchange made halfway across a blend
+    leaves its frames to either track), and two cuts a few frames apart would exchange the
+    tracks back and forth from pass to pass. Where three look-alikes leave a crowd each on the
+    next one's object, no exchange of two tracks puts any of them right (:func:`_exchange_cycles`).
     """
     out = list(tracks)
     seams: dict[tuple[int, int], list[int]] = {}

@@ -25,6 +25,21 @@ def small_bag(tmp_path_factory: pytest.TempPathFactory, small_scene: SceneConfig
 
 
 @pytest.fixture(scope="session")
+def benchmark_module():
+    """Loader of a benchmark script (``benchmarks/NAME.py``) as a module, for tests of its parts:
+    the scripts are not a package."""
+    import importlib.util
+
+    def load(name: str):
+        path = Path(__file__).resolve().parents[1] / "benchmarks" / f"{name}.py"
+        spec = importlib.util.spec_from_file_location(f"{name}_benchmark", path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        return module
+    return load
+
+
+@pytest.fixture(scope="session")
 def venv_bin() -> Path:
     """Folder of the console scripts installed beside the running interpreter."""
     return Path(sys.executable).parent

@@ -2,21 +2,14 @@
 same ones for one generator seed and others for another."""
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
-
 import pytest
 
 from trap_core.synthetic.scene import CELLS, MIXED, PHOTOS, ROAD, SHAPES
 
 
 @pytest.fixture(scope="module")
-def fresh_draws():
-    path = Path(__file__).resolve().parents[1] / "benchmarks" / "fresh_draws.py"
-    spec = importlib.util.spec_from_file_location("fresh_draws_benchmark", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+def fresh_draws(benchmark_module):
+    return benchmark_module("fresh_draws")
 
 
 def test_a_generator_seed_gives_the_same_videos_and_another_seed_others(fresh_draws) -> None:

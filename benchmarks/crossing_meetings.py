@@ -32,26 +32,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import quality  # noqa: E402  (the benchmark sets and their graph cache)
 
 from trap_core.cli import parameter_assignment  # noqa: E402
-from trap_core.clustering import Track, box_centres, box_path, usual_size  # noqa: E402
+from trap_core.clustering import Track  # noqa: E402
 from trap_core.evaluation.held_objects import NONE, held_objects  # noqa: E402
 from trap_core.pipeline import TrapParams, track  # noqa: E402
 from trap_core.pipeline import track_rules  # noqa: E402
-from trap_core.robust.duplicates import flag_runs  # noqa: E402
+from trap_core.robust import lookalike_meetings  # noqa: E402
 
 HELD_SHARE = 0.6  # of a side's boxes on one object, for the track to hold it there
-
-
-def meetings(tracks: Sequence[Track], alike: np.ndarray, n_frames: int) -> list[tuple[int, int, int, int]]:
-    """(a, b, first frame, frame past the last) of each meeting of two alike tracks of ``tracks``."""
-    centres = box_centres(np.array([box_path(t, n_frames) for t in tracks]).reshape(len(tracks), n_frames, 4))
-    sizes = [usual_size(t) if len(t) else 0.0 for t in tracks]
-    found = []
-    for a in range(len(tracks)):
-        for b in range(a + 1, len(tracks)):
-            if alike[a, b]:
-                close = np.linalg.norm(centres[a] - centres[b], axis=1) < min(sizes[a], sizes[b])
-                found += [(a, b, start, stop) for start, stop in zip(*(run.tolist() for run in flag_runs(close)))]
-    return found
 
 
 def held_over(track_: Track, frames: range, truth: Sequence[dict]) -> int:
@@ -89,7 +76,7 @@ def video_counts(scene: dict, segmentation: str, cache: Path, overrides: dict) -
         track(graphs, TrapParams.from_mapping({"segmentation": segmentation, **overrides}))
     counts: Counter = Counter()
     for given, returned, n_frames, window, alike in seen:
-        for a, b, start, stop in meetings(given, alike, n_frames):
+        for a, b, start, stop in lookalike_meetings(given, n_frames, alike):
             was = verdict((given[a], given[b]), start, stop, window, truth)
             if was is not None:
                 counts[was, verdict((returned[a], returned[b]), start, stop, window, truth) or "neither"] += 1

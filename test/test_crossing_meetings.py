@@ -1,11 +1,12 @@
 """The crossing-meetings benchmark judges a meeting of two tracks by the objects the ground truth
-says they hold either side of it, and finds the meetings the crossing rule reads."""
+says they hold either side of it, over the meetings the crossing rule reads (lookalike_meetings)."""
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
 from trap_core.clustering import Track
+from trap_core.robust import lookalike_meetings
 
 
 @pytest.fixture(scope="module")
@@ -34,5 +35,5 @@ def test_a_meeting_is_kept_traded_or_not_judged_by_the_objects_held_either_side(
     assert [judge(pair, 45, 55, 8, truth) for pair in (own, traded, lost)] == ["kept", "traded", None]
     assert judge((_track(1, p), _track(2, p)), 45, 55, 8, truth) is None  # one object for both before it
     alike = np.ones((2, 2), dtype=bool)
-    assert crossing_meetings.meetings(list(own), alike, 100) == [(0, 1, 41, 60)]
-    assert crossing_meetings.meetings(list(own), ~alike, 100) == []  # only look-alikes trade
+    assert lookalike_meetings(list(own), 100, alike) == [(0, 1, 41, 60)]
+    assert lookalike_meetings(list(own), 100, ~alike) == []  # only look-alikes trade

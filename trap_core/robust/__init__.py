@@ -11,7 +11,7 @@ from trap_core.robust.box_edges import steady_edges
 from trap_core.robust.camera import (HOP_SHARE, camera_paths, camera_transforms, cluster_world_speed, world_reach,
                                      world_speed, world_steps)
 from trap_core.robust.continuation import continue_tracks, join_handovers, mend_shared_stretches
-from trap_core.robust.crossings import lookalike_tracks, swap_at_crossings
+from trap_core.robust.crossings import lookalike_meetings, lookalike_tracks, swap_at_crossings
 from trap_core.robust.end_colours import EndColours, colours_match
 from trap_core.robust.ends import alone_at_ends
 from trap_core.robust.duplicates import (drop_repeated_pieces, drop_shared_stretches, extend_from_twins,
@@ -36,8 +36,8 @@ __all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderCont
            "continue_tracks", "drop_repeated_pieces", "drop_shared_stretches", "drop_still_regions",
            "drop_stray_pieces", "drop_strays", "end_at_exits", "extend_from_twins", "fill_gaps", "grow_boxes",
            "hand_to_owners", "held_share", "join_handovers", "join_returns", "join_spare_returns", "keep_one_size",
-           "lookalike_tracks", "mend_shared_stretches", "merge_duplicates", "merge_parts", "moves_in_hops",
-           "pattern_sizes", "reaches_border", "rejoin_fragments", "repeats_others", "scene_patterns",
+           "lookalike_meetings", "lookalike_tracks", "mend_shared_stretches", "merge_duplicates", "merge_parts",
+           "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments", "repeats_others", "scene_patterns",
            "separate_groups", "shadowed", "split_mixed", "stays_with_scene", "steady_clusters", "steady_edges",
            "steady_patterns", "swap_at_crossings", "through_groups", "whole_patterns_apart", "without_backdrop",
            "world_reach", "world_speed", "world_steps"]

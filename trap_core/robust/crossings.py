@@ -147,8 +147,7 @@ def _swap_pass(out: list[Track], n_frames: int, window: int, alike: np.ndarray, 
             if not alike[a, b]:
                 continue
             size = min(sizes[a], sizes[b])
-            close = np.linalg.norm(centres[a] - centres[b], axis=1) < size  # NaN where either is absent
-            for start, stop in zip(*(bounds.tolist() for bounds in flag_runs(close))):
+            for start, stop in _meeting_runs(centres, sizes, a, b):
                 blended = np.nan_to_num(box_iou(boxes[a, start:stop], boxes[b, start:stop])).max() >= min_iou
                 found = _best_cut(centres[a], centres[b], range(start, stop + 1), window, TURN * size,
                                   window if blended else 0)
@@ -191,8 +190,7 @@ def _exchange_cycles(out: list[Track], n_frames: int, window: int, alike: np.nda
     are turned.
     """
     boxes, centres, sizes = _paths(out, n_frames)
-    meet = {(i, j): np.linalg.norm(centres[i] - centres[j], axis=1) < min(sizes[i], sizes[j])
-            for i, j in itertools.combinations(range(len(out)), 2) if alike[i, j]}
+    meet = {(i, j): _meet(centres, sizes, i, j) for i, j in itertools.combinations(range(len(out)), 2) if alike[i, j]}
     for trio in itertools.combinations(range(len(out)), 3):
         pairs = [pair for pair in itertools.combinations(trio, 2) if pair in meet]
         if len(pairs) < 3:
@@ -336,6 +334,27 @@ def _jump(before: np.ndarray, after: np.ndarray, cut: np.ndarray | int) -> np.nd
     (v0, p0), (v1, p1) = np.moveaxis(before, -2, 0), np.moveaxis(after, -2, 0)
     at = np.asarray(cut, dtype=float)[..., None] - 0.5
     return np.linalg.norm((p1 + v1 * at) - (p0 + v0 * at), axis=-1)
+
+
+def lookalike_meetings(tracks: Sequence[Track], n_frames: int, alike: np.ndarray) -> list[tuple[int, int, int, int]]:
+    """(a, b, first frame, frame past the last) of each meeting of two tracks ``alike[a, b]`` of
+    ``tracks``, as :func:`swap_at_crossings` reads them: for measures of what it does to them
+    (``benchmarks/crossing_meetings.py``)."""
+    _, centres, sizes = _paths(tracks, n_frames)
+    return [(a, b, start, stop) for a, b in itertools.combinations(range(len(tracks)), 2) if alike[a, b]
+            for start, stop in _meeting_runs(centres, sizes, a, b)]
+
+
+def _meet(centres: np.ndarray, sizes: np.ndarray, a: int, b: int) -> np.ndarray:
+    """Per frame: whether tracks ``a`` and ``b`` (of :func:`_paths`' ``centres`` and ``sizes``)
+    meet, their box centres closer than the smaller of their usual sizes (False where either
+    is absent)."""
+    return np.linalg.norm(centres[a] - centres[b], axis=1) < min(sizes[a], sizes[b])
+
+
+def _meeting_runs(centres: np.ndarray, sizes: np.ndarray, a: int, b: int) -> list[tuple[int, int]]:
+    """(first frame, frame past the last) of each meeting of tracks ``a`` and ``b`` (:func:`_meet`)."""
+    return list(zip(*(bounds.tolist() for bounds in flag_runs(_meet(centres, sizes, a, b)))))
 
 
 def _paths(out: Sequence[Track], n_frames: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -377,6 +377,14 @@ def test_a_first_frame_of_few_felzenszwalb_regions_gets_a_warning(textured_frame
     assert "the first frame has only 1 region at k 7:" in note and note.warns  # the tracks may suffer: a warning
 
 
+def test_command_line_runs_print_a_warning_note_as_a_warning(capsys: pytest.CaptureFixture) -> None:
+    """``run_bag`` and the evaluation print the first-frame notes to stderr; without the level a
+    ROS node logs, a warning must say it is one."""
+    from trap_core.pipeline import SetupNote, TrapParams, print_setup_notes
+    print_setup_notes(TrapParams(), [SetupNote("segmentation: k raised"), SetupNote("segmentation: few", warns=True)])
+    assert capsys.readouterr().err == "segmentation: k raised\nwarning: segmentation: few\n"
+
+
 def test_a_chroma_weight_of_zero_is_fitted_on_the_first_frame_for_the_whole_video() -> None:
     """``chroma_weight`` 0 asks for the weight to be fitted; the video's parameters then hold it, the
     user is told, and the graphs are those of that weight. It is fitted on the frame at its own
@@ -397,6 +405,10 @@ def test_a_chroma_weight_of_zero_is_fitted_on_the_first_frame_for_the_whole_vide
     assert frame_graph(frame, used).n_nodes != frame_graph(frame, TrapParams(chroma_weight=1.0)).n_nodes
     assert frame_graph(frame, TrapParams()).n_nodes == frame_graph(frame, used).n_nodes  # a frame alone: its own
     assert first_frame_setup(frame, TrapParams(chroma_weight=1.0))[0].chroma_weight == 1.0  # the colour space's
+    noise = np.random.default_rng(6).integers(0, 256, (120, 160, 3), dtype=np.uint8)  # as much in chroma
+    assert first_frame_setup(noise, TrapParams(max_regions=0))[1] == [
+        "segmentation: chroma weighed as much as brightness in colour distances, fitted on the first frame "
+        "(chroma_weight)"]
     assert first_frame_setup(frame, TrapParams(segmentation="colour", chroma_weight=0.0, max_regions=0))[0] == \
         TrapParams(segmentation="colour", chroma_weight=0.0, max_regions=0)  # exact colours weigh no distances
 

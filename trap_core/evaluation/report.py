@@ -25,7 +25,7 @@ from trap_core.evaluation.paper_measures import cluster_precision_recall  # noqa
 from trap_core.evaluation.scoring import boxes_by_frame, match_objects, mot_measures  # noqa: E402
 from trap_core.motformat import ground_truth_path, read_mot  # noqa: E402
 from trap_core.outputs import Thumbnails, contact_sheet  # noqa: E402
-from trap_core.pipeline import TrapParams, graphs_of, track  # noqa: E402
+from trap_core.pipeline import TrapParams, graphs_of, print_setup_notes, track  # noqa: E402
 from trap_core.pipeline.bag_run import thumbnailed_frames  # noqa: E402
 from trap_core.progress import Progress  # noqa: E402
 
@@ -79,8 +79,8 @@ def evaluate_bag(bag: Path, gt_path: Path, base: TrapParams, baselines: list[str
         thumbnails = Thumbnails(stream.count)
         start = time.perf_counter()
         # with the camera's steps whatever the base method: the ablation adds them in its own step
-        graphs = list(graphs_of(thumbnailed_frames(stream, thumbnails, meter), base,
-                                lambda used, notes: print("\n".join(notes), file=sys.stderr), image_steps=True))
+        graphs = list(graphs_of(thumbnailed_frames(stream, thumbnails, meter), base, print_setup_notes,
+                                image_steps=True))
         graph_seconds = time.perf_counter() - start
         meter.finish()
     n_frames = len(graphs)

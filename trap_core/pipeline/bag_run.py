@@ -3,7 +3,6 @@ timeline.png)."""
 from __future__ import annotations
 
 import json
-import sys
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -14,7 +13,7 @@ import numpy as np
 from trap_core.bagio import BagError, open_image_stream
 from trap_core.outputs import Thumbnails, contact_sheet, track_timeline, write_tracks_mot
 from trap_core.pipeline.chunks import ChunkedRun, ChunkedTracker
-from trap_core.pipeline.frames_to_graphs import graphs_of
+from trap_core.pipeline.frames_to_graphs import SetupNote, graphs_of, print_setup_notes
 from trap_core.pipeline.params import TrapParams
 from trap_core.progress import Progress
 
@@ -54,9 +53,9 @@ def run_bag(bag: str | Path, out: str | Path, params: TrapParams, topic: str | N
     bad_frame: BagError | None = None
     fitted: list[TrapParams] = []  # the segmentation's parameters, fitted to the first frame
 
-    def tell(used: TrapParams, notes: list[str]) -> None:
+    def tell(used: TrapParams, notes: list[SetupNote]) -> None:
         fitted.append(used)
-        print("\n".join(notes), file=sys.stderr)
+        print_setup_notes(used, notes)
     with open_image_stream(bag, topic) as stream:
         meter = Progress(stream.count, f"segmenting {stream.topic}")
         thumbnails = Thumbnails(stream.count)

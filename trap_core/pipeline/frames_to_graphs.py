@@ -7,6 +7,7 @@ are in flight (memory stays flat).
 from __future__ import annotations
 
 import dataclasses
+import sys
 from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 
@@ -86,6 +87,13 @@ class SetupNote(str):
         return note
 
 
+def print_setup_notes(used: TrapParams, notes: list[SetupNote]) -> None:
+    """Write the lines of :func:`first_frame_setup` to stderr, a warning's after ``warning:``: how
+    the command-line runs tell them (the ``told`` of :func:`graphs_of`); a ROS node logs each at
+    its level instead. ``used``, the parameters fitted, is there for that signature."""
+    print("\n".join(f"warning: {note}" if note.warns else note for note in notes), file=sys.stderr)
+
+
 def first_frame_setup(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, list[SetupNote]]:
     """The segmentation parameters of a whole video, from its first frame ``rgb``
     (:func:`fitted_chroma_weight` where ``chroma_weight`` is 0, then :func:`fitted_to_regions`),
@@ -118,8 +126,10 @@ def first_frame_setup(rgb: np.ndarray, params: TrapParams) -> tuple[TrapParams, 
     notes: list[SetupNote] = []
     weighed = _chroma_weighed(rgb, params)
     if weighed != params:
-        notes.append(SetupNote(f"segmentation: chroma weighed {weighed.chroma_weight:.2f} times brightness in colour "
-                               f"distances, fitted on the first frame (chroma_weight)"))
+        weight = ("as much as brightness" if weighed.chroma_weight == 1
+                  else f"{weighed.chroma_weight:.2f} times brightness")
+        notes.append(SetupNote(f"segmentation: chroma weighed {weight} in colour distances, fitted on the first "
+                               f"frame (chroma_weight)"))
     used, count = _fitted(rgb, weighed)
     if used.k != params.k:
         notes.append(SetupNote(f"segmentation: k raised from {params.k:g} to {used.k:g}: the first frame had more "

@@ -2147,6 +2147,32 @@ def test_a_track_that_starts_late_is_continued_back_by_the_cluster_that_led_to_i
     assert [len(t) for t in out] == [60, 34]
 
 
+def test_a_track_taken_on_by_another_is_not_continued_by_a_spare_cluster() -> None:
+    """The track holds frames 0-59 of an object moving right and cluster 0 goes on from frame 62
+    where that motion puts it. Where another track starts at frame 66 on the object turned back
+    (its first box 30 px from the track's last) or on its line, the object was taken on there:
+    the track is left for :func:`join_handovers`. Where that track starts 13 frames after the
+    end (the window is 12), or 185 px away, the cluster continues it."""
+    from trap_core.clustering import summarise
+    from trap_core.robust import continue_tracks
+    t = np.arange(100, dtype=float)
+    boxes = np.column_stack([100 + 2 * t, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    centres = boxes[:, :2] + boxes[:, 2:4] / 2
+    summary = summarise(np.array([0]), _paths([(62, centres[62:])]), np.ones(1), 100)
+    built = {0: _as_track(0, np.arange(62, 100), boxes[62:])}
+    cut = _as_track(1, np.arange(60), boxes[:60])
+    back = boxes[59] - [0.0, 30.0, 0.0, 0.0] - np.outer(t[:28], [2.0, 0.0, 0.0, 0.0])
+
+    def continued(start: int, taker: np.ndarray) -> int:
+        tracks = [cut, _as_track(2, np.arange(start, start + 28), taker[:28])]
+        return len(continue_tracks(tracks, summary, np.array([0]), 100, 640, 480, 12, 40.0, built.__getitem__)[0])
+
+    assert continued(66, back) == 60
+    assert continued(66, boxes[66:]) == 60
+    assert continued(72, back) == 98
+    assert continued(66, back + [0.0, 185.0, 0.0, 0.0]) == 98
+
+
 def test_a_cluster_that_hops_between_objects_continues_each_where_it_holds_it() -> None:
     """Cluster 0 holds object A in frames 0-37 and object B, 185 px away, in frames 62-99. Track
     1 holds A from frame 40, track 2 holds B until frame 59: the cluster's early boxes go before
@@ -2743,6 +2769,32 @@ def test_a_piece_of_a_track_on_another_tracks_object_is_dropped() -> None:
     jumping = np.vstack([second[:40], first[40:]])
     assert drop_repeated_pieces([tracks[0], _as_track(2, np.arange(100), jumping)], 12)[1].frames.tolist() == \
         list(range(40))
+
+
+def test_a_track_that_drifted_unseen_onto_another_tracks_object_loses_what_it_held_there() -> None:
+    """Track 2 holds its own object in frames 0-59 (seen), then its patterns are not seen for 20
+    frames while its boxes glide onto track 1's object, which it then holds in 80-139 (seen in
+    one frame of three): over the whole piece 43 % repeats track 1, but the stretch after the
+    unseen run repeats it throughout, and goes with the run. Unseen for only 12 frames (the
+    ``min_gap``), nothing is cut out: the piece is judged whole and kept."""
+    import dataclasses
+
+    from trap_core.robust import drop_repeated_pieces
+    t = np.arange(140, dtype=float)
+    first = np.column_stack([100 + 2 * t, np.full(140, 200.0), np.full(140, 40.0), np.full(140, 30.0)])
+    own = first + [0.0, 100.0, 0.0, 0.0]
+    glide = np.clip((t - 59) / 21, 0, 1)[:, None]
+    drifting = own * (1 - glide) + first * glide
+    points = np.where(((t < 60) | ((t >= 80) & (t % 3 == 0)))[:, None], drifting[:, :2], np.nan)
+    frames = np.arange(140)
+    tracks = [_as_track(1, frames, first), dataclasses.replace(_as_track(2, frames, drifting), points=points)]
+    out = drop_repeated_pieces(tracks, 12)
+    assert len(out[0]) == 140 and out[1].frames.tolist() == list(range(60))
+    points[60:73] = np.nan
+    points[73:] = drifting[73:, :2]  # unseen for 13 frames, 60-72
+    assert len(drop_repeated_pieces([tracks[0], dataclasses.replace(tracks[1], points=points)], 12)[1]) == 60
+    points[72] = drifting[72, :2]  # 12 frames
+    assert len(drop_repeated_pieces([tracks[0], dataclasses.replace(tracks[1], points=points)], 12)[1]) == 140
 
 
 def test_a_dropped_piece_that_held_the_whole_object_lends_its_boxes_to_the_track_on_a_part() -> None:

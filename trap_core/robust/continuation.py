@@ -72,7 +72,9 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     cluster too short to be selected) gets that cluster's boxes before its start, unless another
     track ends within ``window`` frames before that start, within ``reach`` of where the piece's
     motion read back puts it: the object was tracked up to there (a handover, which
-    :func:`join_handovers` joins), and a spare cluster before the start holds something else.
+    :func:`join_handovers` joins), and a spare cluster before the start holds something else;
+    forward the same where another track starts within ``window`` frames after the end, near the
+    piece's line or its last box (:func:`_taken_on`).
     """
     out = list(tracks)
     lent = np.zeros(summary.covered.shape, dtype=bool)  # (cluster, frame) whose box went to a track
@@ -114,7 +116,9 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
     lo, hi = (limit + 1, edge) if backward else (edge + 1, limit)
     others = [t for k, t in enumerate(tracks) if k != slot]
     edge_box = current.boxes[current.frames == edge]
-    if backward and _handed_over(others, edge, line, window, reach):
+    handed = (_handed_over(others, edge, line, window, reach) if backward
+              else _taken_on(others, current, edge, line, window, reach))
+    if handed:
         return None
     hiding = [t for t in others if box_iou(edge_box, box_path(t, summary.covered.shape[1])[edge])[0] > 0]
     near = []
@@ -149,6 +153,22 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
                 follow = in_rows(follow, np.logical_and.accumulate(at_border))
         return follow, cluster
     return None
+
+
+def _taken_on(others: Sequence[Track], track: Track, end: int, line: tuple[np.ndarray, np.ndarray], window: int,
+              reach: float) -> bool:
+    """Whether one of the ``others`` tracks starts at most ``window`` frames after ``end`` (a
+    piece of ``track``'s last frame) with its first box centre at most ``reach`` px from where the
+    piece's motion ``line`` puts it, or from the piece's last box centre (an object that turned as
+    it met a look-alike): that track took the object on, and :func:`join_handovers` joins the
+    two; a spare cluster after the end would repeat it or hold something else."""
+    last = box_centres(track.boxes[track.frames == end])[0]
+    for other in others:
+        if end < int(other.frames[0]) <= end + window:
+            first = box_centres(other.boxes[:1])[0]
+            if min(_off_line(other, np.array([0]), line)[0], float(np.linalg.norm(first - last))) <= reach:
+                return True
+    return False
 
 
 def _handed_over(others: Sequence[Track], start: int, line: tuple[np.ndarray, np.ndarray], window: int,

@@ -263,22 +263,58 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
     (:func:`drop_shared_stretches` needs the track's motion on both sides). Runs of up to
     ``HOLE`` frames where jitter parts the boxes count as held, as in a shared stretch: a track
     that held one object and then, with no jump, another (two objects it went along with, each
-    tracked) was kept at 78 % of its frames held. Tracks are taken in order, each against the
+    tracked) was kept at 78 % of its frames held. Once every track's pieces are judged, a piece
+    that does not repeat others as a whole is judged again in parts cut at its runs of more than ``min_gap`` frames where its patterns
+    are not seen (boxes inferred, :attr:`Track.points` NaN): a track whose object turned can go
+    on in a straight line through nothing onto a look-alike's track, and a part on it goes
+    together with the unseen run that led there. Tracks are taken in order, each against the
     others as left. A dropped piece spanning ``min_frames`` frames or more (0: none) that held
     the whole of an object another track holds a part of gives that track its boxes
     (:func:`_lend_whole`).
     """
     out = list(tracks)
-    for slot, track in enumerate(out):
-        repeated = repeats_others(track, out[:slot] + out[slot + 1:], min_iou, min_inside, centred=True)
-        keep = np.ones(len(track), dtype=bool)
-        for rows in track_pieces(track.frames, min_gap, track.boxes):
-            if np.mean(_holes_bridged(repeated[rows])) >= min_share:
-                keep[rows] = False
-                if min_frames and track.frames[rows[-1]] - track.frames[rows[0]] >= min_frames:
-                    _lend_whole(out, slot, rows)
-        out[slot] = in_rows(track, keep)
-    return [t for t in out if len(t)]
+    for in_parts in (False, True):  # parts once whole pieces are gone: a piece to go may repeat a part to stay
+        for slot, track in enumerate(out):
+            repeated = repeats_others(track, out[:slot] + out[slot + 1:], min_iou, min_inside, centred=True)
+            keep = np.ones(len(track), dtype=bool)
+            for piece in track_pieces(track.frames, min_gap, track.boxes):
+                whole = not in_parts or _repeats(repeated[piece], min_share)
+                parts = [piece] if whole else _seen_parts(track, piece, min_gap)
+                dropped = [_repeats(repeated[rows], min_share) for rows in parts[::2]]
+                for rows, gone in zip(parts[::2], dropped):
+                    if gone:
+                        keep[rows] = False
+                        if min_frames and track.frames[rows[-1]] - track.frames[rows[0]] >= min_frames:
+                            _lend_whole(out, slot, rows)
+                for at, rows in enumerate(parts[1::2]):
+                    if dropped[at] or dropped[at + 1]:
+                        keep[rows] = False
+            out[slot] = in_rows(track, keep)
+        out = [t for t in out if len(t)]
+    return out
+
+
+def _repeats(repeated: np.ndarray, min_share: float) -> bool:
+    """Whether a piece whose frames ``repeated`` another track's boxes does so in at least
+    ``min_share`` of them, runs of up to ``HOLE`` frames between counted as repeated."""
+    return bool(np.mean(_holes_bridged(repeated)) >= min_share)
+
+
+def _seen_parts(track: Track, rows: np.ndarray, min_gap: int) -> list[np.ndarray]:
+    """``rows`` of a track cut at its runs of more than ``min_gap`` frames where its patterns are
+    not seen (boxes inferred): seen stretch, unseen run, seen stretch, ... (odd count). A run at
+    either end of ``rows`` leads nowhere and is not cut off."""
+    if track.points is None:
+        return [rows]
+    unseen = np.isnan(track.points[rows, 0])
+    begins, stops = flag_runs(unseen)
+    long_runs = [(begin, stop) for begin, stop in zip(begins.tolist(), stops.tolist())
+                 if stop - begin > min_gap and begin > 0 and stop < rows.size]
+    parts, at = [], 0
+    for begin, stop in long_runs:
+        parts += [rows[at:begin], rows[begin:stop]]
+        at = stop
+    return parts + [rows[at:]]
 
 
 # A dropped piece whose boxes are this many times the area of those it repeats (both ends

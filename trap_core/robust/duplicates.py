@@ -264,13 +264,13 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
     ``HOLE`` frames where jitter parts the boxes count as held, as in a shared stretch: a track
     that held one object and then, with no jump, another (two objects it went along with, each
     tracked) was kept at 78 % of its frames held. Once every track's pieces are judged, a piece
-    that does not repeat others as a whole is judged again in parts cut at its runs of more than ``min_gap`` frames where its patterns
-    are not seen (boxes inferred, :attr:`Track.points` NaN): a track whose object turned can go
-    on in a straight line through nothing onto a look-alike's track, and a part on it goes
-    together with the unseen run that led there. Tracks are taken in order, each against the
-    others as left. A dropped piece spanning ``min_frames`` frames or more (0: none) that held
-    the whole of an object another track holds a part of gives that track its boxes
-    (:func:`_lend_whole`).
+    that does not repeat others as a whole is judged again in parts, cut at its runs of more than
+    ``min_gap`` frames where its patterns are not seen (boxes inferred, :attr:`Track.points`
+    NaN): a track whose object turned can go on in a straight line through nothing onto a
+    look-alike's track, and a part on it goes together with the unseen run that led there. Tracks
+    are taken in order, each against the others as left. A dropped piece spanning ``min_frames``
+    frames or more (0: none) that held the whole of an object another track holds a part of gives
+    that track its boxes (:func:`_lend_whole`).
     """
     out = list(tracks)
     for in_parts in (False, True):  # parts once whole pieces are gone: a piece to go may repeat a part to stay
@@ -278,20 +278,29 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
             repeated = repeats_others(track, out[:slot] + out[slot + 1:], min_iou, min_inside, centred=True)
             keep = np.ones(len(track), dtype=bool)
             for piece in track_pieces(track.frames, min_gap, track.boxes):
-                whole = not in_parts or _repeats(repeated[piece], min_share)
-                parts = [piece] if whole else _seen_parts(track, piece, min_gap)
-                dropped = [_repeats(repeated[rows], min_share) for rows in parts[::2]]
-                for rows, gone in zip(parts[::2], dropped):
-                    if gone:
-                        keep[rows] = False
-                        if min_frames and track.frames[rows[-1]] - track.frames[rows[0]] >= min_frames:
-                            _lend_whole(out, slot, rows)
-                for at, rows in enumerate(parts[1::2]):
-                    if dropped[at] or dropped[at + 1]:
-                        keep[rows] = False
+                for rows, seen in _repeating_rows(track, piece, repeated, min_gap, min_share, in_parts):
+                    keep[rows] = False
+                    if seen and min_frames and track.frames[rows[-1]] - track.frames[rows[0]] >= min_frames:
+                        _lend_whole(out, slot, rows)
             out[slot] = in_rows(track, keep)
         out = [t for t in out if len(t)]
     return out
+
+
+def _repeating_rows(track: Track, piece: np.ndarray, repeated: np.ndarray, min_gap: int, min_share: float,
+                    in_parts: bool) -> list[tuple[np.ndarray, bool]]:
+    """The rows of a track's ``piece`` that go (:func:`drop_repeated_pieces`), each with whether
+    its patterns are seen there: the whole piece where it repeats others (``repeated``, per row of
+    the track) in ``min_share`` of its frames; otherwise, ``in_parts``, each of its
+    :func:`_seen_parts` that does, and the unseen runs beside those (not seen: no lending)."""
+    if _repeats(repeated[piece], min_share):
+        return [(piece, True)]
+    if not in_parts:
+        return []
+    parts = _seen_parts(track, piece, min_gap)
+    gone = [_repeats(repeated[rows], min_share) for rows in parts[::2]]
+    return ([(rows, True) for rows, went in zip(parts[::2], gone) if went]
+            + [(rows, False) for at, rows in enumerate(parts[1::2]) if gone[at] or gone[at + 1]])
 
 
 def _repeats(repeated: np.ndarray, min_share: float) -> bool:

@@ -910,6 +910,30 @@ def test_a_piece_whose_larger_boxes_are_of_one_size_takes_them_as_its_whole_obje
     np.testing.assert_allclose(out[0].boxes[whole, 2:], panels[whole, 2:])
 
 
+def test_a_tracks_usual_size_is_read_where_its_patterns_are_seen_not_where_its_gaps_were_filled() -> None:
+    """A 26x26 disc over brick, whose patterns for a while also take in the mortar its body cuts
+    off (boxes of 60-90 x 110-150 px, a different size each frame), and between two sightings of
+    that, a gap filled with one such box copied over 50 frames. Counted, the filled boxes make
+    the large size the usual one and of one size (the whole object, :func:`_whole_sizes`), and
+    the disc's own boxes would grow to it; read where the patterns are seen, the disc keeps its
+    size and the large boxes are cut down to it."""
+    from trap_core.clustering import Track
+    from trap_core.robust import separate_groups
+    frames = np.arange(120)
+    disc = np.column_stack([100 + 2.0 * frames, np.full(120, 200.0), np.full(120, 26.0), np.full(120, 26.0)])
+    points = disc[:, :2] + 13.0
+    boxes = disc.copy()
+    large = (frames >= 40) & (frames < 110)
+    boxes[large, 2:] = np.where(frames[large, None] % 2, [64.0, 113.0], [90.0, 150.0])
+    boxes[large, :2] = points[large] - boxes[large, 2:] / 2
+    filled = (frames >= 40) & (frames < 90)
+    boxes[filled] = boxes[40]
+    points[filled] = np.nan
+    out = separate_groups([Track(1, frames, boxes, np.ones(120), 1, points)], 120, 640, 480, factor=1.5, window=100)
+    np.testing.assert_allclose(out[0].boxes[:, 2:], disc[:, 2:])
+    np.testing.assert_allclose(out[0].boxes[~large], disc[~large])
+
+
 _BASE = TrapParams(segmentation="colour", eps=20.0, tau=25)
 
 
@@ -1013,7 +1037,7 @@ def test_chains_hopping_over_bricks_are_no_tracks() -> None:
         matched = match_objects([boxes_by_frame(t) for t in tracks], truth)
         return sum(p >= 0.8 and r >= 0.9 for _, p, r in matched), len(tracks) - len(truth)
 
-    assert people_and_strays(steady_steps=0.0, own_region=False)[1] >= 4
+    assert people_and_strays(steady_steps=0.0, own_region=False)[1] >= 3
     for rules in ({"own_region": False}, {"steady_steps": 0.0}, {}):
         people, strays = people_and_strays(**rules)
         assert people == 3 and strays <= 1, rules

@@ -7,7 +7,9 @@ other's box. Blob trackers meet the same merges and splits; here they are solved
 tracks themselves know:
 
 * **usual size**: a track's running median width and height over the frames where it is clear
-  (its box overlaps no other track's; if it never is, where it is in no group), the ``window``
+  (its box overlaps no other track's) and its patterns are seen (a box inferred in a gap is
+  drawn from the boxes beside it, and a long gap would count them over and over; if there are
+  no such frames, where it is clear, else where it is in no group), the ``window``
   nearest such frames on each side within the piece of the track (no gap over ``min_gap``): a
   merge of any length, broken now and then by a few half-merged frames, does not move it, nor
   does another piece (after an exit, a zoom);
@@ -98,7 +100,8 @@ def separate_groups(tracks: Sequence[Track], n_frames: int, width: float, height
             partner = _partners(shared)
     alone = partner < 0
     clear = ~np.isnan(boxes[..., 0]) & ~np.any(shared > 0, axis=1)  # its box overlaps no other track's
-    preferred = (clear, alone)  # the frames that show most of the object's own size
+    seen = ~np.isnan(points[..., 0])  # the track's patterns are there: its box was measured, not filled
+    preferred = (clear & seen, clear, alone)  # the frames that show most of the object's own size
     usual = _running_median(boxes[..., 2:4], preferred, window, min_gap)
     offsets = points - box_centres(boxes)
     whole_centres = np.full(points.shape, np.nan)

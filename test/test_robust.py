@@ -2821,6 +2821,26 @@ def test_a_track_that_drifted_unseen_onto_another_tracks_object_loses_what_it_he
     assert len(drop_repeated_pieces([tracks[0], dataclasses.replace(tracks[1], points=points)], 12)[1]) == 140
 
 
+def test_a_track_that_ends_on_another_tracks_object_loses_that_tail() -> None:
+    """Track 2 holds its own object in frames 0-119 and then, with no gap or jump (two look-alikes
+    met), track 1's in 120-159, where it ends; track 1 goes on to 199. The whole piece repeats
+    track 1 in only a quarter of its frames, but its 40-frame tail does throughout, and goes.
+    Kept: a tail shorter than twice ``min_gap``, and one on a track that ends with it (two
+    tracks on one object that leaves the view: which one holds it is not for this rule)."""
+    from trap_core.robust import drop_repeated_pieces
+    t = np.arange(200, dtype=float)
+    first = np.column_stack([100 + 2 * t, np.full(200, 200.0), np.full(200, 40.0), np.full(200, 30.0)])
+    own = first + [0.0, 25.0, 0.0, 0.0]  # just below it: its centre out of track 1's box, no jump
+    frames = np.arange(160)
+    hopping = np.vstack([own[:120], first[120:160]])
+    out = drop_repeated_pieces([_as_track(1, np.arange(200), first), _as_track(2, frames, hopping)], 12)
+    assert len(out[0]) == 200 and out[1].frames.tolist() == list(range(120))
+    short = np.vstack([own[:140], first[140:160]])  # a 20-frame tail
+    assert len(drop_repeated_pieces([_as_track(1, np.arange(200), first), _as_track(2, frames, short)], 12)[1]) == 160
+    together = drop_repeated_pieces([_as_track(1, frames, first[:160]), _as_track(2, frames, hopping)], 12)
+    assert [len(t) for t in together] == [160, 160]
+
+
 def test_a_dropped_piece_that_held_the_whole_object_lends_its_boxes_to_the_track_on_a_part() -> None:
     """Track 1 holds a 24x45 object, track 2 a 10x45 strip of it (2.4 times smaller, its centre
     in track 1's box) over the same 100 frames. Track 1 is taken first and repeats track 2: its

@@ -270,7 +270,11 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
     look-alike's track, and a part on it goes together with the unseen run that led there. Tracks
     are taken in order, each against the others as left. A dropped piece spanning ``min_frames``
     frames or more (0: none) that held the whole of an object another track holds a part of gives
-    that track its boxes (:func:`_lend_whole`).
+    that track its boxes (:func:`_lend_whole`). Last, a track that ends while another goes on
+    loses the tail of its last piece that repeats those others (:func:`_repeating_tail`): two
+    look-alikes met, and it went on with the other's object until its patterns ran out there,
+    which a judge of the whole piece, mostly on its own object, lets stand; cut back to its own
+    object, it can be joined to the track that took that over (a handover).
     """
     out = list(tracks)
     for in_parts in (False, True):  # parts once whole pieces are gone: a piece to go may repeat a part to stay
@@ -284,7 +288,23 @@ def drop_repeated_pieces(tracks: Sequence[Track], min_gap: int, min_iou: float =
                         _lend_whole(out, slot, rows)
             out[slot] = in_rows(track, keep)
         out = [t for t in out if len(t)]
-    return out
+    for slot, track in enumerate(out):
+        later = [t for k, t in enumerate(out) if k != slot and len(t) and t.frames[-1] > track.frames[-1]]
+        if later:
+            repeated = repeats_others(track, later, min_iou, min_inside, centred=True)
+            out[slot] = in_rows(track, np.arange(len(track)) < _repeating_tail(track, repeated, min_gap, min_share))
+    return [t for t in out if len(t)]
+
+
+def _repeating_tail(track: Track, repeated: np.ndarray, min_gap: int, min_share: float) -> int:
+    """The first row of the longest tail of ``track``'s last piece (at least ``2 * min_gap``
+    frames, from a repeated frame on) that repeats other tracks' boxes (``repeated``, per row, as
+    :func:`_repeats` counts them) in ``min_share`` of its frames; ``len(track)`` if none does."""
+    piece = track_pieces(track.frames, min_gap, track.boxes)[-1]
+    backwards = _holes_bridged(repeated[piece])[::-1]
+    length = np.arange(1, piece.size + 1)
+    tails = np.flatnonzero(backwards & (length >= 2 * min_gap) & (np.cumsum(backwards) >= min_share * length))
+    return int(piece[piece.size - 1 - tails.max()]) if tails.size else len(track)
 
 
 def _repeating_rows(track: Track, piece: np.ndarray, repeated: np.ndarray, min_gap: int, min_share: float,

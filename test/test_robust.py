@@ -1435,6 +1435,33 @@ def test_short_gaps_get_interpolated_boxes_long_or_far_ones_stay_empty() -> None
     assert fill_gaps(far, max_gap=25).frames.tolist() == [0, 1, 2, 3, 4, 14]
 
 
+def test_a_gap_through_which_the_object_leaves_the_view_is_not_filled() -> None:
+    """A 60x40 object moves right 5 px a frame and its patterns stop at the right border of a
+    640 px view; 15 frames later its track holds something at x = 430. At its pace the object
+    was wholly out of view before then, so no box is drawn across the gap (without the view, a
+    line would cross the frame on nothing). The mirror image: an object entering through the
+    left border after the gap. Filled are a gap beside a box at the border whose motion keeps it
+    in view (it moves along the border), and one with both sides at the border (the object may
+    leave and come back, or a box at the border jitter)."""
+    from trap_core.robust import fill_gaps
+    frames = np.r_[np.arange(20), np.arange(35, 45)]
+    x = np.r_[485.0 + 5 * np.arange(20), np.full(10, 430.0)]  # last box before the gap: x = 580, at the border
+    boxes = np.column_stack([np.minimum(x, 640.0), np.full(30, 200.0), np.minimum(60.0, 640.0 - x), np.full(30, 40.0)])
+    leaving = _as_track(1, frames, boxes)
+    assert fill_gaps(leaving, max_gap=25).frames.size == 45  # blind to the view: filled
+    assert fill_gaps(leaving, max_gap=25, view=(640, 480)).frames.tolist() == frames.tolist()
+    entering = _as_track(1, 44 - frames[::-1], np.column_stack([640.0 - boxes[::-1, 0] - boxes[::-1, 2],
+                                                                  boxes[::-1, 1:]]))
+    assert fill_gaps(entering, max_gap=25, view=(640, 480)).frames.tolist() == (44 - frames[::-1]).tolist()
+    along = boxes.copy()
+    along[:, 0], along[:, 1] = 580.0, 100.0 + 2 * frames  # at the right border, moving down
+    along[20:, 0] = 500.0
+    assert fill_gaps(_as_track(1, frames, along), max_gap=25, view=(640, 480)).frames.size == 45
+    back = boxes.copy()
+    back[20:, 0] = 590.0
+    assert fill_gaps(_as_track(1, frames, back), max_gap=25, view=(640, 480)).frames.size == 45
+
+
 def test_a_track_ending_at_the_border_follows_its_object_out_of_view() -> None:
     from trap_core.clustering import Track
     from trap_core.robust import continue_to_border

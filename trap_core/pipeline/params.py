@@ -142,7 +142,7 @@ class TrapParams:
     grow: bool = _p(True, "robust: track boxes grow over nearby regions that move with the track, tau/5 frames before "
                           "or after (objects the segmentation splits into parts)")
     fill_gaps: bool = _p(True, "robust: a track's box is interpolated through its gaps of at most tau frames "
-                               "(patterns missed for a few frames)")
+                               "(patterns missed for a few frames), not where its motion takes it out of view in the gap")
     one_track: bool = _p(True, "robust: tracks whose boxes match (IoU >= 0.5, or the smaller 90 % inside the other) "
                                "in 80 % of the (at least tau) frames they share hold one object: they are merged, and "
                                "so are two that lie close and move as one there (parts of one object); "

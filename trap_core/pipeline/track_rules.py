@@ -80,7 +80,7 @@ class ClusterTracks:
         if robust and params.grow:
             built = grow_boxes(built, self.stacked, self.transforms, lag=lag, max_gap=2 * lag, pixel=pixel)
         if robust and params.fill_gaps:
-            built = fill_gaps(built, params.tau)
+            built = fill_gaps(built, params.tau, view=self.graphs[0].frame_size)
         return built
 
 
@@ -209,7 +209,7 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
     params = tracks_of.params
     width, height = view
     summary = clusters.summary
-    tracks = _gaps_filled([drop_strays(t, max(3, params.tau // 3)) for t in tracks], params)
+    tracks = _gaps_filled([drop_strays(t, max(3, params.tau // 3)) for t in tracks], params, view)
     alike = _lookalikes(tracks, clusters, tracks_of.graphs)
     tracks = swap_at_crossings(tracks, n_frames, max(3, params.tau // 3), alike)
     spare = _spare_clusters(clusters, params.tau)
@@ -220,7 +220,8 @@ def _one_track_per_object(tracks: list[Track], clusters: Clusters, tracks_of: Cl
     tracks = [end_at_exits(t, width, height, motion_window) for t in tracks]
     tracks = continue_tracks(tracks, summary, spare, n_frames, width, height, motion_window, params.eps, tracks_of)
     tracks = [end_at_exits(t, width, height, motion_window) for t in tracks]  # and the continuations'
-    tracks = _gaps_filled(join_handovers(tracks, n_frames, motion_window, params.eps, max_gap=2 * params.tau), params)
+    tracks = join_handovers(tracks, n_frames, motion_window, params.eps, max_gap=2 * params.tau)
+    tracks = _gaps_filled(tracks, params, view)
     if params.size_jump:  # the continuations' boxes were not sized against their tracks yet
         tracks = separate_groups(tracks, n_frames, width, height, params.size_jump, 4 * params.tau,
                                  groups=False, min_gap=params.tau)
@@ -271,6 +272,6 @@ def _lookalikes(tracks: list[Track], clusters: Clusters, graphs: Sequence[PlaneG
                             colours=colour_overlap(colour_shares(tracks, graphs)))
 
 
-def _gaps_filled(tracks: list[Track], params: TrapParams) -> list[Track]:
+def _gaps_filled(tracks: list[Track], params: TrapParams, view: tuple[int, int]) -> list[Track]:
     """The tracks with their gaps filled again after a rule removed or appended boxes."""
-    return [fill_gaps(t, params.tau) for t in tracks] if params.fill_gaps else tracks
+    return [fill_gaps(t, params.tau, view=view) for t in tracks] if params.fill_gaps else tracks

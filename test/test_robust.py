@@ -2244,6 +2244,31 @@ def test_a_cluster_that_hops_between_objects_continues_each_where_it_holds_it() 
     np.testing.assert_allclose(out[1].boxes[60:], b[62:])
 
 
+def test_a_cluster_that_held_the_object_up_to_the_tracks_end_continues_it_through_a_turn() -> None:
+    """The object moves right 2 px a frame, then turns back at 4 px a frame from frame 60, where
+    the track (frames 0-59) loses it. Cluster 0 held it in frames 40-59, inside the track's
+    boxes, and is found again from frame 68, 52 px from where the track's straight line puts
+    it (reach 40): it goes on with the object and continues the track. Cluster 1, at the same
+    place from frame 68 but elsewhere before (185 px away), does not."""
+    from trap_core.clustering import summarise
+    from trap_core.robust import continue_tracks
+    t = np.arange(100, dtype=float)
+    x = np.where(t < 60, 100 + 2 * t, 218 - 4 * (t - 59))
+    boxes = np.column_stack([x, np.full(100, 200.0), np.full(100, 40.0), np.full(100, 30.0)])
+    centres = boxes[:, :2] + boxes[:, 2:4] / 2
+    away = centres + [0.0, 185.0]
+    summary = summarise(np.array([0, 0, 1, 1]), _paths([(40, centres[40:60]), (68, centres[68:]),
+                                                        (40, away[40:60]), (68, centres[68:])]), np.ones(4), 100)
+    built = {0: _as_track(0, np.r_[40:60, 68:100], boxes[np.r_[40:60, 68:100]]),
+             1: _as_track(0, np.r_[40:60, 68:100], np.vstack([boxes[40:60] + [0.0, 185.0, 0.0, 0.0], boxes[68:]]))}
+    ending = _as_track(1, np.arange(60), boxes[:60])
+    out = continue_tracks([ending], summary, np.array([0]), 100, 640, 480, 12, 40.0, built.__getitem__)
+    assert out[0].frames.tolist() == list(range(60)) + list(range(68, 100))
+    np.testing.assert_allclose(out[0].boxes[60:], boxes[68:])
+    out = continue_tracks([ending], summary, np.array([1]), 100, 640, 480, 12, 40.0, built.__getitem__)
+    assert out[0].frames.tolist() == list(range(60))
+
+
 def test_a_track_continued_back_in_time_is_continued_again_from_its_new_start() -> None:
     """The track holds frames 60-99; cluster 0 covers 35-50 where its motion, read back, puts
     the object, cluster 1 covers 0-25, more than 12 frames before the track's start but within

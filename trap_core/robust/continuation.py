@@ -53,7 +53,8 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     A candidate continues a piece if it covers at least ``window`` frames not used up (below) after
     the piece's last one and before the next piece, the first of them at most ``window`` frames
     after it, and there its mean position is at most ``reach`` px from where the piece's motion (a
-    straight line through its last ``window`` box centres) puts it; or, where the piece's last box
+    straight line through its last ``window`` box centres) puts it, or it held the piece's object
+    up to there (:func:`_held_up_to`: the object may have turned); or, where the piece's last box
     overlaps another track's (its object went behind that one, or merged with it) and that track
     stays in view, the first of them any number of frames later, at most ``reach`` px from that
     track's box centre there (a hidden object comes out of what hid it, however long that took,
@@ -129,7 +130,8 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
         nearest = int(covered[-1] if backward else covered[0])
         position = summary.paths.at(cluster, nearest)
         if abs(nearest - edge) <= window:
-            error = float(np.linalg.norm(position - (origin + velocity * nearest)))
+            error = min(float(np.linalg.norm(position - (origin + velocity * nearest))),
+                        _held_up_to(current, edge, summary, cluster, window, backward))
         else:
             error = _out_from_hiding(hiding, position, edge, nearest, window)
         if error <= reach:
@@ -427,6 +429,24 @@ def _held_beside(own: np.ndarray, stretch_ends: tuple[int, int], summary: Cluste
     frames = np.flatnonzero(summary.covered[cluster])
     frames = frames[(frames < start) | (frames > end)]
     return int(np.count_nonzero(_within(summary.paths.at(cluster, frames), own[frames])))
+
+
+def _held_up_to(track: Track, edge: int, summary: ClusterSummary, cluster: int, window: int, backward: bool) -> float:
+    """Median distance from ``cluster``'s mean positions to the track's box centres over the
+    piece's last ``window`` frames up to its ``edge`` (first, back in time), where the cluster
+    held the piece's object: seen in at least half of those frames, each time inside the track's
+    box; inf where it did not. Such a cluster goes on with the object past the edge wherever it
+    turns (the piece's straight line would lose it there)."""
+    length = summary.covered.shape[1]
+    frames = np.arange(edge, min(edge + window, length)) if backward else np.arange(max(edge - window + 1, 0), edge + 1)
+    boxes = box_path(track, length)[frames]
+    seen = summary.covered[cluster, frames] & ~np.isnan(boxes[:, 0])
+    if np.count_nonzero(seen) < window / 2:
+        return np.inf
+    points, boxes = summary.paths.at(cluster, frames[seen]), boxes[seen]
+    if not _within(points, boxes).all():
+        return np.inf
+    return float(np.median(np.linalg.norm(points - box_centres(boxes), axis=1)))
 
 
 def _motion_error(track: Track, stretch_ends: tuple[int, int], summary: ClusterSummary,

@@ -217,13 +217,18 @@ def test_occurrences_cut_by_the_view_do_not_count_as_seen() -> None:
 
 def test_twin_clusters_are_beside_a_kept_one_with_frames_it_lacks() -> None:
     """Cluster 1 holds kept cluster 0's object and goes on 40 frames after it ends; cluster 2 is
-    near it for 20 frames only; cluster 3 is kept."""
+    near it for 20 frames only; cluster 3 is kept. In a video of 120 frames, 40 new frames are
+    under ``min_new`` = 41; where the video ends with them (100 frames), half as many do, as the
+    video cut the object's time short."""
     paths = _paths([(0, np.zeros((60, 2))), (0, np.full((100, 2), 5.0)), (0, np.r_[np.zeros((20, 2)),
                     np.full((80, 2), 200.0)]), (0, np.full((100, 2), 400.0))])
-    summary = summarise(np.arange(4), paths, np.ones(4), 100)
-    assert twin_clusters(summary, [3, 0], 100, 0.25, 40.0, min_new=25) == [1]
-    assert twin_clusters(summary, [3, 0], 100, 0.25, 40.0, min_new=41) == []
-    assert twin_clusters(summary, [3, 0], 100, 0.25, 40.0, 25, eligible=np.array([1, 0, 1, 1], bool)) == []
+    summary = summarise(np.arange(4), paths, np.ones(4), 120)
+    assert twin_clusters(summary, [3, 0], 120, 0.25, 40.0, min_new=25) == [1]
+    assert twin_clusters(summary, [3, 0], 120, 0.25, 40.0, min_new=41) == []
+    assert twin_clusters(summary, [3, 0], 120, 0.25, 40.0, 25, eligible=np.array([1, 0, 1, 1], bool)) == []
+    at_end = summarise(np.arange(4), paths, np.ones(4), 100)
+    assert twin_clusters(at_end, [3, 0], 100, 0.25, 40.0, min_new=41) == [1]
+    assert twin_clusters(at_end, [3, 0], 100, 0.25, 40.0, min_new=81) == []
 
 
 def test_track_boxes_and_scores() -> None:

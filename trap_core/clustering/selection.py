@@ -177,8 +177,10 @@ def twin_clusters(summary: ClusterSummary, chosen: list[int], n_frames: int, min
     it is near one kept cluster, often holds the same object with other structures (noisy
     regions split an object's patterns among clusters that overlap in time) and may cover
     frames the kept one lacks (the object's return, which rejoined only one of them). Those
-    covering at least ``min_new`` such frames are returned; the tracks decide which frames are
-    taken (:func:`trap_core.robust.extend_from_twins`).
+    covering at least ``min_new`` such frames are returned, or half as many where they reach
+    the video's first or last frame (the video cut the object's time there short, as
+    :func:`trap_core.robust.drop_stray_pieces` reads a piece there); the tracks decide which
+    frames are taken (:func:`trap_core.robust.extend_from_twins`).
     """
     spare = np.arange(summary.length.size)
     if eligible is not None:
@@ -191,7 +193,8 @@ def twin_clusters(summary: ClusterSummary, chosen: list[int], n_frames: int, min
     twins = []
     for column, cluster in enumerate(spare.tolist()):
         beside = int(np.argmax(near[:, column]))
-        if near[beside, column] >= summary.length[cluster] / 2 and np.count_nonzero(
-                summary.covered[cluster] & ~summary.covered[chosen[beside]]) >= min_new:
+        new = summary.covered[cluster] & ~summary.covered[chosen[beside]]
+        needed = min_new / 2 if new[0] or new[-1] else min_new
+        if near[beside, column] >= summary.length[cluster] / 2 and np.count_nonzero(new) >= needed:
             twins.append(cluster)
     return twins

@@ -63,9 +63,11 @@ def merge_parts(tracks: Sequence[Track], min_common: int, min_share: float = 0.8
     seen: in at least ``min_share`` of the frames both cover (at least ``min_common``, and
     ``min_share`` of the shorter track's), their boxes are close (:data:`PART_GAP`), the offset
     between their centres stays put (:data:`PART_SHIFT`), and the box that holds both is of an
-    object's size (:data:`PART_FIT`). The longer track keeps its id and takes the joint box
-    where both are seen and the other's box where only that one is. Ids are renumbered 1.. in
-    order."""
+    object's size (:data:`PART_FIT`). Those frames are the ones where both tracks' patterns are
+    seen, if at least ``min_common``: a box inferred through a gap is a straight line between
+    the boxes beside it, and where the object turned there it says nothing of how the two parts
+    move. The longer track keeps its id and takes the joint box where both are seen and the
+    other's box where only that one is. Ids are renumbered 1.. in order."""
     if len(tracks) < 2:
         return list(tracks)
     largest = np.max([_sides(usual_box(t)) for t in tracks if len(t)], axis=0)
@@ -95,21 +97,28 @@ def _joined_parts(kept: Track, other: Track, min_common: int, min_share: float, 
     common, in_kept, in_other = np.intersect1d(kept.frames, other.frames, assume_unique=True, return_indices=True)
     if common.size < max(min_common, min_share * min(len(kept), len(other))):
         return None
+    seen = _seen(kept)[in_kept] & _seen(other)[in_other]
+    judged = seen if np.count_nonzero(seen) >= min_common else np.ones(common.size, dtype=bool)
     a, b = kept.boxes[in_kept], other.boxes[in_other]
     a_end, b_end = a[:, :2] + a[:, 2:4], b[:, :2] + b[:, 2:4]
     low, high = np.minimum(a[:, :2], b[:, :2]), np.maximum(a_end, b_end)
-    joint_size = np.median(high - low, axis=0)
+    joint_size = np.median((high - low)[judged], axis=0)
     if np.any(_sides(joint_size) > (1 + PART_FIT) * largest):
         return None
     side = joint_size.max()
     gap = np.max(np.maximum(a[:, :2], b[:, :2]) - np.minimum(a_end, b_end), axis=1)
     offset = box_centres(b) - box_centres(a)
-    shift = np.linalg.norm(offset - np.median(offset, axis=0), axis=1)
-    if np.mean((gap <= PART_GAP * side) & (shift <= PART_SHIFT * side)) < min_share:
+    shift = np.linalg.norm(offset - np.median(offset[judged], axis=0), axis=1)
+    if np.mean(((gap <= PART_GAP * side) & (shift <= PART_SHIFT * side))[judged]) < min_share:
         return None
     boxes = kept.boxes.copy()
     boxes[in_kept] = np.column_stack([low, high - low])
     return _union(dataclasses.replace(kept, boxes=boxes), other)
+
+
+def _seen(track: Track) -> np.ndarray:
+    """Per row of the track: whether its patterns are seen there (its box measured, not inferred)."""
+    return np.ones(len(track), dtype=bool) if track.points is None else ~np.isnan(track.points[:, 0])
 
 
 def _sides(size: np.ndarray) -> np.ndarray:

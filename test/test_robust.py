@@ -2673,6 +2673,34 @@ def test_with_two_lookalikes_out_of_view_at_once_neither_takes_the_one_that_come
     assert len(out) == 1 and out[0].frames.tolist() == seen.tolist()
 
 
+def test_a_spare_cluster_can_bring_an_object_back_from_where_it_leaves_the_tracked_objects() -> None:
+    """An object left the view at frame 39. Cluster 0 hopped between look-alikes from the video's
+    start: on track 2's object up to frame 59, then off every track near the left border: it may
+    bring the object back from frame 60. Cluster 1 is off the tracks but mid-view, cluster 2 near
+    the border for only 10 frames: neither may. The part of cluster 0's track that may: from its
+    first box at the border that repeats no track's box; none where it holds a tracked object
+    there, or is seen in only one of every three frames it spans."""
+    from trap_core.clustering import summarise
+    from trap_core.robust import entering_part, spare_entries
+    still = np.tile([100.0, 100.0, 40.0, 30.0], (100, 1))
+    tracked = _as_track(2, np.arange(100), still)
+    hopping = np.r_[np.tile([120.0, 115.0], (60, 1)), np.tile([15.0, 300.0], (40, 1))]
+    paths = _paths([(0, hopping), (50, np.tile([320.0, 240.0], (50, 1))), (90, np.tile([15.0, 300.0], (10, 1)))])
+    summary = summarise(np.array([0, 1, 2]), paths, np.ones(3), 100)
+    first = spare_entries(summary, np.array([0, 1, 2]), [tracked], 39, np.array([40.0, 30.0]), 640, 480, 25)
+    assert first == {0: 60}
+    assert spare_entries(summary, np.array([0, 1, 2]), [tracked], 99, np.array([40.0, 30.0]), 640, 480, 25) == {}
+    assert spare_entries(summary, np.array([1, 2]), [tracked], 39, np.array([40.0, 30.0]), 640, 480, 25) == {}
+    boxes = np.r_[still[:60], np.column_stack([np.full(40, 100.0) - 3.0 * np.arange(40), np.full(40, 285.0),
+                                               np.full(40, 40.0), np.full(40, 30.0)])]
+    spare = _as_track(0, np.arange(100), boxes)  # its box reaches the left border (within 10 px) from frame 90
+    assert entering_part(spare, 60, [tracked], 640, 480).frames.tolist() == list(range(90, 100))
+    assert len(entering_part(spare, 60, [tracked, _as_track(3, np.arange(100), boxes)], 640, 480)) == 0
+    sparse = np.r_[np.arange(60), np.arange(60, 100, 3)]  # at the border one frame in three: a chain
+    assert len(entering_part(_as_track(0, sparse, np.vstack([still[:60], np.tile([0.0, 285.0, 40.0, 30.0], (14, 1))])),
+                             60, [tracked], 640, 480)) == 0
+
+
 def test_a_spare_cluster_that_brings_back_an_object_that_left_continues_its_track() -> None:
     """A person leaves through the left border (frame 40) and comes back there at frame 70, where
     only a spare (unselected) cluster's track holds it. The spare continues track 1 and is not a

@@ -14,7 +14,7 @@ from functools import cached_property
 
 import numpy as np
 
-from trap_core.clustering import (ClusterSummary, Track, build_track, frame_cores, in_rows, reaches_border,
+from trap_core.clustering import (ClusterSummary, Track, build_track, frame_cores, reaches_border,
                                   twin_clusters, usual_size)
 from trap_core.mining import MiningResult
 from trap_core.ordered import each_on_threads
@@ -22,10 +22,10 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, StackedGraphs
 from trap_core.robust import (GroupBoxes, colour_overlap, colour_shares, continue_to_border, continue_tracks,
                               drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_stray_pieces,
-                              drop_strays, end_at_exits, extend_from_twins, fill_gaps, grow_boxes, join_handovers,
-                              join_returns, join_spare_returns, keep_one_size, lookalike_tracks,
-                              mend_shared_stretches, merge_duplicates, merge_parts, repeats_others, separate_groups,
-                              steady_edges, swap_at_crossings, through_groups, world_reach)
+                              drop_strays, end_at_exits, entering_part, extend_from_twins, fill_gaps, grow_boxes,
+                              join_handovers, join_returns, join_spare_returns, keep_one_size, lookalike_tracks,
+                              mend_shared_stretches, merge_duplicates, merge_parts, separate_groups,
+                              spare_entries, steady_edges, swap_at_crossings, through_groups, world_reach)
 
 
 @dataclass
@@ -241,26 +241,20 @@ def _spare_clusters(clusters: Clusters, min_frames: int) -> np.ndarray:
 def _returns_of_spares(tracks: list[Track], clusters: Clusters, tracks_of: ClusterTracks, n_frames: int,
                        view: tuple[int, int], motion_window: int) -> list[Track]:
     """Tracks whose object left the view continued by the spare cluster that brings it back
-    (:func:`join_spare_returns`, out of view within 2 tau frames). A spare's frames where its
-    box repeats a track's are left out (it holds that track's object there); one left with fewer
+    (:func:`join_spare_returns`, out of view within 2 tau frames). A spare is read from its first
+    frame after the exit off the tracks' boxes near the border (:func:`spare_entries`), its
+    frames where its box repeats a track's are left out (it holds that track's object there),
+    and it starts at its first box at the border (:func:`entering_part`); one left with fewer
     than tau frames brings nothing back."""
     params = tracks_of.params
     width, height = view
 
     def spares_after(frame: int, size: np.ndarray) -> list[Track]:
-        spare = _spare_clusters(clusters, params.tau)
-        paths = clusters.summary.paths
-        spare = spare[paths.start[spare] > frame]
-        # where each is first: a box that reaches the border is centred within 3/4 of its size of it, and
-        # the patterns' mean can be off the centre by half of it (a part); twice the size leaves room for a zoom
-        x, y = paths.points[paths.offsets[spare]].T
-        near = (np.minimum(x, width - x) <= 2 * size[0]) | (np.minimum(y, height - y) <= 2 * size[1])
-        out = []
-        for built in tracks_of.many(spare[near].tolist()):
-            own = ~repeats_others(built, tracks, 0.5, centred=True)
-            if own.sum() >= params.tau:
-                out.append(in_rows(built, own))
-        return out
+        first = spare_entries(clusters.summary, _spare_clusters(clusters, params.tau), tracks, frame, size, width,
+                              height, params.tau)
+        parts = [entering_part(built, first[built.cluster], tracks, width, height)
+                 for built in tracks_of.many(list(first))]
+        return [part for part in parts if len(part) >= params.tau]
 
     return join_spare_returns(tracks, spares_after, lambda every: _lookalikes(every, clusters, tracks_of.graphs),
                               *view, n_frames, motion_window, 2 * params.tau)

@@ -16,8 +16,9 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, reaches_border, with_frames
+from trap_core.clustering import ClusterSummary, Track, box_path, in_rows, reaches_border, with_frames
 from trap_core.robust.borders import continue_to_border
+from trap_core.robust.duplicates import repeats_others
 
 
 def join_returns(tracks: Sequence[Track], width: float, height: float, alike: np.ndarray) -> list[Track]:
@@ -54,10 +55,11 @@ def join_spare_returns(tracks: Sequence[Track], spares_after: Callable[[int, np.
     too where its motion takes its whole box there within ``max_frames`` frames
     (:func:`trap_core.robust.continue_to_border` with that lead, over the last ``span`` frames);
     a track that is continued gets those boxes to the border as well. ``spares_after(frame,
-    size)`` gives the spares that start after ``frame`` (the first track's exit) within ``size``
-    (width, height: the largest usual size of the tracks that left) of the border (building them
-    costs), and ``alike(tracks + spares)`` whether two of them may be look-alikes; only a spare
-    that enters the view continues a track.
+    size)`` gives the spares' parts that may bring an object back after ``frame`` (the first
+    track's exit), near the border by ``size`` (width, height: the largest usual size of the
+    tracks that left; :func:`spare_entries`, :func:`entering_part`), and ``alike(tracks +
+    spares)`` whether two of them may be look-alikes; only a spare that enters the view
+    continues a track.
     """
     reaching = [continue_to_border(t, n_frames, width, height, span, max_frames, lead=max_frames) for t in tracks]
     left = _at_border(reaching, -1, width, height)
@@ -102,3 +104,54 @@ def _returns(tracks: Sequence[Track], leaves: np.ndarray, enters: np.ndarray, al
         if not out_too:
             follows[left] = first
     return follows
+
+
+def spare_entries(summary: ClusterSummary, spare: np.ndarray, tracks: Sequence[Track], frame: int, size: np.ndarray,
+                  width: float, height: float, min_frames: int) -> dict[int, int]:
+    """Spare clusters that may bring back an object that left the view at ``frame``, each with
+    the frame from which it may: its first frame after the exit where its mean position lies on
+    no track's box, within twice ``size`` (width, height) of the border, with at least
+    ``min_frames`` such frames from there on.
+
+    A cluster that started after the exit is read from its start; one that hopped between
+    look-alikes all along can go on with the object's return, read from where it is off the
+    tracked objects at the border. A box that reaches the border is centred within 3/4 of its
+    size of it, and the patterns' mean can be off the centre by half of it (a part); twice the
+    size leaves room for a zoom. Building a cluster's track costs: only these are built.
+    """
+    frames = np.arange(frame + 1, summary.covered.shape[1])
+    if not (spare.size and frames.size):
+        return {}
+    points = summary.paths.dense(spare, frames)
+    free = summary.covered[spare, frame + 1:] & ~_on_tracks(points, tracks, frame + 1)
+    x, y = np.moveaxis(points, -1, 0)
+    near = (np.minimum(x, width - x) <= 2 * size[0]) | (np.minimum(y, height - y) <= 2 * size[1])
+    ahead = np.cumsum(free[:, ::-1], axis=1)[:, ::-1]  # free frames from each frame on
+    entry = free & near & (ahead >= min_frames)
+    found = entry.any(axis=1)
+    if not found.any():
+        return {}
+    return dict(zip(spare[found].tolist(), (frame + 1 + np.argmax(entry[found], axis=1)).tolist()))
+
+
+def entering_part(spare: Track, start: int, tracks: Sequence[Track], width: float, height: float) -> Track:
+    """The ``spare`` track's frames from ``start`` on that repeat no track's box (it holds a
+    tracked object there), from the first whose box reaches the border: where it may be an
+    object coming into the view. Empty if none, or if those frames are under half of the ones
+    they span (sparse sightings: a chain of background at the border)."""
+    own = (spare.frames >= start) & ~repeats_others(spare, tracks, 0.5, centred=True)
+    entering = np.flatnonzero(own & reaches_border(spare.boxes, width, height))
+    own[:entering[0] if entering.size else len(spare)] = False
+    frames = spare.frames[own]
+    sparse = frames.size == 0 or frames.size < (frames[-1] - frames[0] + 1) / 2
+    return in_rows(spare, np.zeros_like(own) if sparse else own)
+
+
+def _on_tracks(points: np.ndarray, tracks: Sequence[Track], start: int) -> np.ndarray:
+    """(clusters, frames) whether each of the clusters' mean ``points`` (clusters, frames from
+    ``start``, 2) lies in one of the ``tracks``' boxes there (it holds a tracked object)."""
+    on = np.zeros(points.shape[:2], dtype=bool)
+    for track in tracks:
+        box = box_path(track, start + points.shape[1])[start:]
+        on |= np.all((points >= box[:, :2]) & (points <= box[:, :2] + box[:, 2:4]), axis=-1)
+    return on

@@ -124,6 +124,12 @@ def centre_inside(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.all((centre >= large[..., :2]) & (centre <= large[..., :2] + large[..., 2:4]), axis=-1)
 
 
+def points_in_boxes(points: np.ndarray, boxes: np.ndarray) -> np.ndarray:
+    """Whether each point lies in its box (``(x, y, w, h)``, broadcast); False where the box or
+    the point is NaN."""
+    return np.all((points >= boxes[..., :2]) & (points <= boxes[..., :2] + boxes[..., 2:4]), axis=-1)
+
+
 def reaches_border(boxes: np.ndarray, width: float, height: float, margin: float = 0.25,
                    size: np.ndarray | None = None) -> np.ndarray:
     """Whether boxes ``(x, y, w, h)`` (N, 4) come within ``margin`` times their size (their own,

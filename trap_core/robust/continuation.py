@@ -29,7 +29,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from trap_core.clustering import (ClusterSummary, Track, box_centres, box_iou, box_path, centre_path, in_rows,
-                                  reaches_border, with_frames)
+                                  points_in_boxes, reaches_border, with_frames)
 from trap_core.robust.duplicates import repeats_others, same_boxes, shared_stretches
 from trap_core.robust.motion import straight_line
 
@@ -400,13 +400,13 @@ def _menders(boxes: np.ndarray, slot: int, stretch_ends: tuple[int, int], summar
     near: dict[int, list[np.ndarray]] = {}  # per candidate that passes: its frames beside the stretch
     for cluster in candidates.tolist():
         inside = stretch[summary.covered[cluster, stretch]]
-        if inside.size < stretch.size / 2 or np.count_nonzero(~np.any(_within(
+        if inside.size < stretch.size / 2 or np.count_nonzero(~np.any(points_in_boxes(
                 summary.paths.at(cluster, inside), others[:, inside]), axis=0)) < stretch.size / 2:
             continue
         beside = [common for common in (side[summary.covered[cluster, side]] for side in sides)
                   if common.size >= window / 2 and min(abs(common[0] - start), abs(common[0] - end)) <= window]
         beside = [common for common in beside  # its patterns' mean position in the track's box
-                  if np.mean(_within(summary.paths.at(cluster, common), own[common])) >= min_share]
+                  if np.mean(points_in_boxes(summary.paths.at(cluster, common), own[common])) >= min_share]
         if beside:
             near[cluster] = beside
     menders = {}
@@ -428,7 +428,7 @@ def _held_beside(own: np.ndarray, stretch_ends: tuple[int, int], summary: Cluste
     start, end = stretch_ends
     frames = np.flatnonzero(summary.covered[cluster])
     frames = frames[(frames < start) | (frames > end)]
-    return int(np.count_nonzero(_within(summary.paths.at(cluster, frames), own[frames])))
+    return int(np.count_nonzero(points_in_boxes(summary.paths.at(cluster, frames), own[frames])))
 
 
 def _held_up_to(track: Track, edge: int, summary: ClusterSummary, cluster: int, window: int, backward: bool) -> float:
@@ -444,7 +444,7 @@ def _held_up_to(track: Track, edge: int, summary: ClusterSummary, cluster: int, 
     if np.count_nonzero(seen) < window / 2:
         return np.inf
     points, boxes = summary.paths.at(cluster, frames[seen]), boxes[seen]
-    if not _within(points, boxes).all():
+    if not points_in_boxes(points, boxes).all():
         return np.inf
     return float(np.median(np.linalg.norm(points - box_centres(boxes), axis=1)))
 
@@ -468,11 +468,6 @@ def _motion_error(track: Track, stretch_ends: tuple[int, int], summary: ClusterS
             errors.append(float(np.median(np.linalg.norm(summary.paths.at(cluster, lent)
                                                          - (origin + velocity * lent[:, None]), axis=1))))
     return min(errors)
-
-
-def _within(points: np.ndarray, boxes: np.ndarray) -> np.ndarray:
-    """Whether each point lies in its box (``(x, y, w, h)``, broadcast); False where the box is NaN."""
-    return np.all((points >= boxes[..., :2]) & (points <= boxes[..., :2] + boxes[..., 2:4]), axis=-1)
 
 
 def _wandering_from(ending: Track, later: Track, window: int, reach: float) -> int:

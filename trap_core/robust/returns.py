@@ -16,7 +16,8 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from trap_core.clustering import ClusterSummary, Track, box_path, in_rows, reaches_border, with_frames
+from trap_core.clustering import (ClusterSummary, Track, box_path, in_rows, points_in_boxes, reaches_border,
+                                  with_frames)
 from trap_core.robust.borders import continue_to_border
 from trap_core.robust.duplicates import repeats_others
 
@@ -153,5 +154,5 @@ def _on_tracks(points: np.ndarray, tracks: Sequence[Track], start: int) -> np.nd
     on = np.zeros(points.shape[:2], dtype=bool)
     for track in tracks:
         box = box_path(track, start + points.shape[1])[start:]
-        on |= np.all((points >= box[:, :2]) & (points <= box[:, :2] + box[:, 2:4]), axis=-1)
+        on |= points_in_boxes(points, box)
     return on

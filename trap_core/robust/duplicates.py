@@ -342,10 +342,7 @@ def _seen_parts(track: Track, rows: np.ndarray, min_gap: int) -> list[np.ndarray
     """``rows`` of a track cut at its runs of more than ``min_gap`` frames where its patterns are
     not seen (boxes inferred): seen stretch, unseen run, seen stretch, ... (odd count). A run at
     either end of ``rows`` leads nowhere and is not cut off."""
-    if track.points is None:
-        return [rows]
-    unseen = np.isnan(track.points[rows, 0])
-    begins, stops = flag_runs(unseen)
+    begins, stops = flag_runs(~_seen(track)[rows])
     long_runs = [(begin, stop) for begin, stop in zip(begins.tolist(), stops.tolist())
                  if stop - begin > min_gap and begin > 0 and stop < rows.size]
     parts, at = [], 0

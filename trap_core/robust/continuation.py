@@ -122,6 +122,7 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
     if handed:
         return None
     hiding = [t for t in others if box_iou(edge_box, box_path(t, summary.covered.shape[1])[edge])[0] > 0]
+    own = box_path(current, summary.covered.shape[1])  # read against every candidate
     near = []
     for cluster in candidates.tolist():
         covered = np.flatnonzero(summary.covered[cluster, lo:hi] & ~lent[cluster, lo:hi]) + lo
@@ -131,7 +132,7 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
         position = summary.paths.at(cluster, nearest)
         if abs(nearest - edge) <= window:
             error = min(float(np.linalg.norm(position - (origin + velocity * nearest))),
-                        _held_up_to(current, edge, summary, cluster, window, backward))
+                        _held_up_to(own, edge, summary, cluster, window, backward))
         else:
             error = _out_from_hiding(hiding, position, edge, nearest, window)
         if error <= reach:
@@ -431,15 +432,16 @@ def _held_beside(own: np.ndarray, stretch_ends: tuple[int, int], summary: Cluste
     return int(np.count_nonzero(points_in_boxes(summary.paths.at(cluster, frames), own[frames])))
 
 
-def _held_up_to(track: Track, edge: int, summary: ClusterSummary, cluster: int, window: int, backward: bool) -> float:
+def _held_up_to(own: np.ndarray, edge: int, summary: ClusterSummary, cluster: int, window: int,
+                backward: bool) -> float:
     """Median distance from ``cluster``'s mean positions to the track's box centres over the
-    piece's last ``window`` frames up to its ``edge`` (first, back in time), where the cluster
-    held the piece's object: seen in at least half of those frames, each time inside the track's
-    box; inf where it did not. Such a cluster goes on with the object past the edge wherever it
+    piece's last ``window`` frames up to its ``edge`` (first, back in time; ``own``: the track's
+    box in each video frame, NaN where none), where the cluster held the piece's object: seen in
+    at least half of those frames, each time inside the track's box; inf where it did not. Such a cluster goes on with the object past the edge wherever it
     turns (the piece's straight line would lose it there)."""
     length = summary.covered.shape[1]
     frames = np.arange(edge, min(edge + window, length)) if backward else np.arange(max(edge - window + 1, 0), edge + 1)
-    boxes = box_path(track, length)[frames]
+    boxes = own[frames]
     seen = summary.covered[cluster, frames] & ~np.isnan(boxes[:, 0])
     if np.count_nonzero(seen) < window / 2:
         return np.inf

@@ -124,6 +124,12 @@ def centre_inside(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.all((centre >= large[..., :2]) & (centre <= large[..., :2] + large[..., 2:4]), axis=-1)
 
 
+def seen_rows(track: Track) -> np.ndarray:
+    """Per row of the track: whether its patterns are seen there (its box measured, not inferred
+    through a gap)."""
+    return np.ones(len(track), dtype=bool) if track.points is None else ~np.isnan(track.points[:, 0])
+
+
 def points_in_boxes(points: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     """Whether each point lies in its box (``(x, y, w, h)``, broadcast); False where the box or
     the point is NaN."""

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from trap_core.clustering import Track
+from trap_core.clustering import Track, seen_rows
 from trap_core.outputs.pictures import track_colour
 
 
@@ -26,7 +26,7 @@ def track_timeline(tracks: Sequence[Track], n_frames: int, path: str | Path,
 
     figure, axes = plt.subplots(figsize=(10, 1.2 + 0.35 * max(len(tracks), 1)), dpi=100)
     for row, trk in enumerate(tracks):
-        inferred = np.isnan(trk.points[:, 0]) if trk.points is not None else np.zeros(len(trk), dtype=bool)
+        inferred = ~seen_rows(trk)
         colour = np.array(track_colour(trk.track_id)) / 255
         for seen in (True, False):
             runs = frame_runs(trk.frames[inferred != seen])

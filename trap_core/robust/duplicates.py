@@ -30,7 +30,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from trap_core.clustering import (Track, box_centres, box_containment, box_iou, box_path, centre_inside, in_rows,
-                                  reaches_border, track_pieces, usual_box, with_frames)
+                                  reaches_border, seen_rows, track_pieces, usual_box, with_frames)
 
 TURN = 0.1  # a velocity change of this share of the box size per frame is a turn, not jitter
 HOLE = 3  # frames in a row where jitter may part two boxes that hold the same object
@@ -97,7 +97,7 @@ def _joined_parts(kept: Track, other: Track, min_common: int, min_share: float, 
     common, in_kept, in_other = np.intersect1d(kept.frames, other.frames, assume_unique=True, return_indices=True)
     if common.size < max(min_common, min_share * min(len(kept), len(other))):
         return None
-    seen = _seen(kept)[in_kept] & _seen(other)[in_other]
+    seen = seen_rows(kept)[in_kept] & seen_rows(other)[in_other]
     judged = seen if np.count_nonzero(seen) >= min_common else np.ones(common.size, dtype=bool)
     a, b = kept.boxes[in_kept], other.boxes[in_other]
     a_end, b_end = a[:, :2] + a[:, 2:4], b[:, :2] + b[:, 2:4]
@@ -114,11 +114,6 @@ def _joined_parts(kept: Track, other: Track, min_common: int, min_share: float, 
     boxes = kept.boxes.copy()
     boxes[in_kept] = np.column_stack([low, high - low])
     return _union(dataclasses.replace(kept, boxes=boxes), other)
-
-
-def _seen(track: Track) -> np.ndarray:
-    """Per row of the track: whether its patterns are seen there (its box measured, not inferred)."""
-    return np.ones(len(track), dtype=bool) if track.points is None else ~np.isnan(track.points[:, 0])
 
 
 def _sides(size: np.ndarray) -> np.ndarray:
@@ -342,7 +337,7 @@ def _seen_parts(track: Track, rows: np.ndarray, min_gap: int) -> list[np.ndarray
     """``rows`` of a track cut at its runs of more than ``min_gap`` frames where its patterns are
     not seen (boxes inferred): seen stretch, unseen run, seen stretch, ... (odd count). A run at
     either end of ``rows`` leads nowhere and is not cut off."""
-    begins, stops = flag_runs(~_seen(track)[rows])
+    begins, stops = flag_runs(~seen_rows(track)[rows])
     long_runs = [(begin, stop) for begin, stop in zip(begins.tolist(), stops.tolist())
                  if stop - begin > min_gap and begin > 0 and stop < rows.size]
     parts, at = [], 0

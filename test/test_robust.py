@@ -1578,6 +1578,28 @@ def test_a_tail_on_another_tracks_object_is_dropped_from_the_track_that_turned()
     assert out[1].frames.tolist() == list(range(60))   # turned where they met: its tail is the other's
 
 
+def test_a_gap_filled_towards_a_dropped_tail_goes_with_it() -> None:
+    """Track 2's patterns vanish from its object at frame 52 and come back on the other
+    look-alike's at 60; the gap between was filled with a straight line from one object to the
+    other. With the tail, those eight inferred boxes go: they lead to the other object, and the
+    track's motion at its end would be read from them."""
+    from trap_core.clustering import Track, box_centres
+    from trap_core.robust import drop_shared_stretches
+    left, right = _crossing()
+    gap = np.arange(52, 60)
+    right[gap] = right[51] + (right[60] - right[51]) * ((gap - 51) / 9)[:, None]
+    points = box_centres(right)
+    points[gap] = np.nan
+    frames = np.arange(100)
+    filled = Track(2, frames, right, np.ones(100), 2, points)
+    out = drop_shared_stretches([_as_track(1, frames, left), filled], 100, 25, 12)
+    assert len(out[0]) == 100 and out[1].frames.tolist() == list(range(52))
+    points[gap[:4]] = box_centres(right[gap[:4]])  # seen up to frame 55: only the frames after go
+    out = drop_shared_stretches([_as_track(1, frames, left), Track(2, frames, right, np.ones(100), 2, points)],
+                                100, 25, 12)
+    assert out[1].frames.tolist() == list(range(56))
+
+
 def test_a_stretch_on_another_tracks_object_is_dropped_from_the_track_that_turned_there() -> None:
     """A path that went on with the other look-alike at frame 60 and came back to its own object
     at frame 100 (which had gone on out of sight of its patterns): the stretch between is the other

@@ -148,8 +148,9 @@ class TrapParams:
                                "so are two that lie close and move as one there (parts of one object); "
                                "boxes more than half the usual size off the track's path (tau/3 frames each side) "
                                "are dropped; a stretch of tau or more frames where a track repeats another's boxes "
-                               "is dropped from it if it turns where the stretch begins or ends (with any piece of "
-                               "under tau frames it leaves on its own), and a track so cut short is continued by a "
+                               "is dropped from it if it turns where the stretch begins or ends (with the boxes "
+                               "inferred up to it and any piece of under tau frames it leaves on its own), and a "
+                               "track so cut short is continued by a "
                                "spare cluster that goes on where it ended (or held its object up to there, or comes "
                                "out of the track that hid it), or by a track that takes its object over there; "
                                "look-alike tracks that traded objects where they met exchange their continuations back")

@@ -235,7 +235,10 @@ def drop_shared_stretches(tracks: Sequence[Track], n_frames: int, min_frames: in
     track's own first or last frame): the mean velocity of its box centre over ``window``
     frames after differs from the one over ``window`` frames before by more than the other
     track's does, and by more than ``TURN`` times its box size per frame. Look-alikes that go
-    on together, or travel together and part, keep both tracks: neither turns.
+    on together, or travel together and part, keep both tracks: neither turns. The frames on
+    either side of a stretch so lost where the track's box was inferred, not seen, up to the
+    stretch go with it: a gap filled towards the stretch is a line drawn from its object to the
+    other, and the track's motion at its new end would be read from it.
     """
     out = list(tracks)
     boxes = np.array([box_path(t, n_frames) for t in out]).reshape(len(out), n_frames, 4)
@@ -248,8 +251,9 @@ def drop_shared_stretches(tracks: Sequence[Track], n_frames: int, min_frames: in
             for start, end in shared_stretches(boxes[a], boxes[b], min_frames, min_iou):
                 ends = [at for at, inside in ((start, start > first), (end + 1, end < last)) if inside]
                 if any(_turns(boxes[a], boxes[b], at, window, least) for at in ends):
-                    out[a] = in_rows(out[a], (out[a].frames < start) | (out[a].frames > end))
-                    boxes[a, start:end + 1] = np.nan
+                    lost = _filled_up_to(out[a], start, end)
+                    out[a] = in_rows(out[a], ~lost)
+                    boxes[a] = box_path(out[a], n_frames)
     return [t for t in out if len(t)]
 
 
@@ -378,6 +382,19 @@ def _lend_whole(tracks: list[Track], slot: int, rows: np.ndarray) -> None:
     lent = other.boxes.copy()
     lent[np.searchsorted(other.frames, frames[best_part])] = boxes[best_part]
     tracks[best] = dataclasses.replace(other, boxes=lent)
+
+
+def _filled_up_to(track: Track, start: int, end: int) -> np.ndarray:
+    """(len(track),) the rows of frames ``start``..``end`` and of the runs of inferred (unseen)
+    rows on consecutive frames that reach them from either side."""
+    frames = track.frames
+    unseen = ~seen_rows(track)
+    lost = (frames >= start) & (frames <= end)
+    before = np.flatnonzero(frames < start)[::-1]
+    after = np.flatnonzero(frames > end)
+    lost[before] = np.logical_and.accumulate(unseen[before] & (frames[before] == start - 1 - np.arange(before.size)))
+    lost[after] = np.logical_and.accumulate(unseen[after] & (frames[after] == end + 1 + np.arange(after.size)))
+    return lost
 
 
 def shared_stretches(boxes: np.ndarray, other: np.ndarray, min_frames: int, min_iou: float,

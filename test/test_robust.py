@@ -718,6 +718,10 @@ def test_a_track_that_vanishes_behind_another_is_followed_there() -> None:
     assert np.all(followed.score[30:] == 0.5) and np.all(followed.score[:30] == 1.0)
     alone = separate_groups(tracks, 80, 640, 480, window=10, groups=False)[1]
     assert alone.frames.tolist() == list(range(30))
+    flicker = seen_a.copy()
+    flicker[30::2] = a[30::2]  # a's own box, one object wide every other frame: no pair in it
+    tracks = [_as_track(1, frames, flicker), _as_track(2, frames[:30], seen_b[:30])]
+    assert separate_groups(tracks, 80, 640, 480, window=10, patience=5)[1].frames.size == 30
     up = np.array([0.0, 195.0, 0.0, 0.0])  # the same, but at the top border: b left the view
     tracks = [_as_track(1, frames, seen_a - up), _as_track(2, frames[:30], seen_b[:30] - up)]
     assert separate_groups(tracks, 80, 640, 480, window=10, patience=5)[1].frames.size == 30

@@ -163,7 +163,8 @@ class TrapParams:
                                "moving as over its last (first) tau/2 frames fully in view, is partly visible")
     groups: bool = _p(True, "robust: where tracks' boxes merge, each gets its usual size at its side of the pair, "
                             "and a track that vanishes inside another's box continues there while it holds two "
-                            "objects; once the track rules have run, a box so placed in a meeting of up to 2 tau "
+                            "objects (and not where it does in under three quarters of those frames: it flickers); "
+                            "once the track rules have run, a box so placed in a meeting of up to 2 tau "
                             "frames follows the straight path of its track across it, inside the pair's box")
     steady_edges: bool = _p(True, "robust: once the track rules have run, a box edge further than a fifth of the "
                                   "track's box size from both lines of that edge, over the tau/2 frames before and "

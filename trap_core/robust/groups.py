@@ -22,8 +22,10 @@ tracks themselves know:
 * **occluded**: a track that ends (or pauses) inside the view while in a group continues in the
   group box: through the whole pause when it comes back out of that same box, otherwise while the
   box stays over 10 % larger than its other member was before the group formed (so it still holds
-  two objects; dips shorter than ``patience`` frames do not end it). Such frames get half the
-  track's lowest observed confidence;
+  two objects; dips shorter than ``patience`` frames do not end it), and not at all where it is
+  that large in under three quarters of those frames (a box that is large one frame and not the
+  next is its member's own, changing between a part of its object and the whole). Such frames get
+  half the track's lowest observed confidence;
 * **oversized** boxes outside groups (``factor`` times the usual size) get the usual size,
   centred where the neighbouring normal frames put the object, inside the observed box;
   **undersized** ones (``factor`` times smaller: a part of the object) likewise, around the
@@ -43,6 +45,7 @@ from trap_core.clustering import Track, box_centres, box_containment, reaches_bo
 
 GROUPED = 0.5  # share of the smaller box inside the other: the two boxes hold the same regions
 HOLDS_MORE = 1.1  # a box this much wider or taller than its usual size holds more than its object
+HOLDS_STEADILY = 0.75  # share of a followed stretch's frames in which the group box must hold more
 # A piece whose boxes are oversized in at least WHOLE_SHARE of its usual-size frames, nearly all
 # (ONE_SIZE_SHARE) within ONE_SIZE of the running median of those boxes, holds its whole object there.
 WHOLE_SHARE = 0.25
@@ -245,7 +248,9 @@ def _follow_occluded(boxes: np.ndarray, partner: np.ndarray, width: float, heigh
     """Give tracks that vanish inside a group box that box while it still holds them (in place);
     returns the (T, F) frames so filled. Whether the box holds more than its other member is
     judged against that member's median size when alone in the ``window`` frames before the
-    group formed (the frames after may all be merged)."""
+    group formed (the frames after may all be merged); a box that holds more in fewer than
+    ``HOLDS_STEADILY`` of the frames it would fill flickers between its member's part and whole
+    and is no evidence of a hidden object."""
     n_tracks, n_frames = boxes.shape[:2]
     inferred = np.zeros((n_tracks, n_frames), dtype=bool)
     observed = ~np.isnan(boxes[..., 0])
@@ -272,7 +277,8 @@ def _follow_occluded(boxes: np.ndarray, partner: np.ndarray, width: float, heigh
                 fill = gap  # came back out of the same box: it was there all along
             else:
                 big = np.any(boxes[other, gap, 2:4] > HOLDS_MORE * alone_size, axis=1) & with_other
-                fill = gap[:_lasting(big, patience)]
+                held = _lasting(big, patience)
+                fill = gap[:held] if held and np.mean(big[:held]) >= HOLDS_STEADILY else gap[:0]
             boxes[slot, fill] = boxes[other, fill]
             inferred[slot, fill] = True
     return inferred

@@ -150,9 +150,9 @@ class TrapParams:
                                "are dropped; a stretch of tau or more frames where a track repeats another's boxes "
                                "is dropped from it if it turns where the stretch begins or ends (with the boxes "
                                "inferred up to it and any piece of under tau frames it leaves on its own), and a "
-                               "track so cut short is continued by a "
-                               "spare cluster that goes on where it ended (or held its object up to there, or comes "
-                               "out of the track that hid it), or by a track that takes its object over there; "
+                               "track so cut short is continued by a spare cluster that goes on where it ended (or "
+                               "held its object up to there, or comes out of the track that hid it), or by a track "
+                               "that takes its object over there; "
                                "look-alike tracks that traded objects where they met exchange their continuations back")
     own_frames: bool = _p(True, "robust, n_objects = 0: clusters are ranked by the frames no kept cluster is near "
                                 "(not all their frames), must be seen (occurrences whose regions do not reach the "

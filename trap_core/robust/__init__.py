@@ -34,10 +34,10 @@ __all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderCont
            "alone_at_ends", "border_contacts", "border_share", "camera_paths", "camera_transforms",
            "cluster_world_speed", "colour_overlap", "colour_shares", "colours_match", "continue_to_border",
            "continue_tracks", "drop_repeated_pieces", "drop_shared_stretches", "drop_still_regions",
-           "drop_stray_pieces", "drop_strays", "end_at_exits", "entering_part", "extend_from_twins", "fill_gaps", "grow_boxes",
-           "hand_to_owners", "held_share", "join_handovers", "join_returns", "join_spare_returns", "keep_one_size",
-           "lookalike_meetings", "lookalike_tracks", "mend_shared_stretches", "merge_duplicates", "merge_parts",
-           "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments", "repeats_others", "scene_patterns",
-           "separate_groups", "shadowed", "spare_entries", "split_mixed", "stays_with_scene", "steady_clusters", "steady_edges",
-           "steady_patterns", "swap_at_crossings", "through_groups", "whole_patterns_apart", "without_backdrop",
-           "world_reach", "world_speed", "world_steps"]
+           "drop_stray_pieces", "drop_strays", "end_at_exits", "entering_part", "extend_from_twins", "fill_gaps",
+           "grow_boxes", "hand_to_owners", "held_share", "join_handovers", "join_returns", "join_spare_returns",
+           "keep_one_size", "lookalike_meetings", "lookalike_tracks", "mend_shared_stretches", "merge_duplicates",
+           "merge_parts", "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments", "repeats_others",
+           "scene_patterns", "separate_groups", "shadowed", "spare_entries", "split_mixed", "stays_with_scene",
+           "steady_clusters", "steady_edges", "steady_patterns", "swap_at_crossings", "through_groups",
+           "whole_patterns_apart", "without_backdrop", "world_reach", "world_speed", "world_steps"]

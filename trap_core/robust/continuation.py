@@ -437,8 +437,9 @@ def _held_up_to(own: np.ndarray, edge: int, summary: ClusterSummary, cluster: in
     """Median distance from ``cluster``'s mean positions to the track's box centres over the
     piece's last ``window`` frames up to its ``edge`` (first, back in time; ``own``: the track's
     box in each video frame, NaN where none), where the cluster held the piece's object: seen in
-    at least half of those frames, each time inside the track's box; inf where it did not. Such a cluster goes on with the object past the edge wherever it
-    turns (the piece's straight line would lose it there)."""
+    at least half of those frames, each time inside the track's box; inf where it did not. Such a
+    cluster goes on with the object past the edge wherever it turns (the piece's straight line
+    would lose it there)."""
     length = summary.covered.shape[1]
     frames = np.arange(edge, min(edge + window, length)) if backward else np.arange(max(edge - window + 1, 0), edge + 1)
     boxes = own[frames]

@@ -120,8 +120,7 @@ def centre_inside(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     a, b = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(b, dtype=float))
     a_smaller = (a[..., 2] * a[..., 3] <= b[..., 2] * b[..., 3])[..., None]
     small, large = np.where(a_smaller, a, b), np.where(a_smaller, b, a)
-    centre = box_centres(small)
-    return np.all((centre >= large[..., :2]) & (centre <= large[..., :2] + large[..., 2:4]), axis=-1)
+    return points_in_boxes(box_centres(small), large)
 
 
 def seen_rows(track: Track) -> np.ndarray:

@@ -252,8 +252,8 @@ def drop_shared_stretches(tracks: Sequence[Track], n_frames: int, min_frames: in
                 ends = [at for at, inside in ((start, start > first), (end + 1, end < last)) if inside]
                 if any(_turns(boxes[a], boxes[b], at, window, least) for at in ends):
                     lost = _filled_up_to(out[a], start, end)
+                    boxes[a, out[a].frames[lost]] = np.nan
                     out[a] = in_rows(out[a], ~lost)
-                    boxes[a] = box_path(out[a], n_frames)
     return [t for t in out if len(t)]
 
 

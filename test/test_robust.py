@@ -618,7 +618,7 @@ def test_a_cluster_of_noise_chains_has_no_steady_pattern_and_an_object_s_cluster
     on the pooled test; but neither steps as an object does, and the cluster has no steady
     pattern. An object's cluster holds such a chain beside a pattern that walks 2 px a frame,
     and has one."""
-    from trap_core.robust import HOP_SHARE, steady_clusters, steady_patterns, world_steps
+    from trap_core.robust import HOP_SHARE, steady_clusters, steady_patterns, unsteady_steps, world_steps
     rng = np.random.default_rng(5)
     frames = np.arange(96)
     pan = np.column_stack([-3.0 * frames, 0.5 * frames])
@@ -632,12 +632,38 @@ def test_a_cluster_of_noise_chains_has_no_steady_pattern_and_an_object_s_cluster
     transforms[:, :2, 2] = pan
     speed = world_speed(paths, transforms, 4, lag=12)
     median, mean, in_hops = world_steps(paths, transforms, 4, hop=10.0)
-    unsteady = (median < 0.5 * speed) | (mean > speed / 0.5)
+    unsteady = unsteady_steps(median, mean, speed, 0.5)
     assert (in_hops < HOP_SHARE).all() and unsteady.tolist() == [True, True, True, False]  # no hops
     steady = steady_patterns(unsteady, in_hops, speed, hop=10.0)
     labels = np.array([0, 0, 1, 1])
     assert steady_clusters(labels, steady, 3).tolist() == [False, True, False]  # cluster 2: no pattern
     assert steady_clusters(np.array([0, 0, -1, 1]), steady, 2).tolist() == [False, True]  # -1: in none
+
+
+def test_a_track_with_no_steady_pattern_is_seen_if_its_own_boxes_step_steadily() -> None:
+    """Under a pan, a slow object (1 px a frame) whose box centre jitters by 0.7 px: its cluster
+    has no steady pattern, but the track's boxes step as an object's do. A chain of noise that
+    drifts as slowly while its box jumps back and forth by 3 px does not."""
+    from trap_core.clustering import Track
+    from trap_core.pipeline.track_rules import _steadily_seen
+    rng = np.random.default_rng(8)
+    frames = np.arange(200)
+    pan = np.column_stack([-2.0 * frames, 0.5 * frames])
+    transforms = np.tile(np.eye(3), (200, 1, 1))
+    transforms[:, :2, 2] = pan
+    params = TrapParams()
+    no_steady_pattern = np.array([False])
+
+    def track(world_centres: np.ndarray) -> Track:
+        corners = world_centres + pan - np.array([13.0, 30.0])
+        return Track(1, frames, np.column_stack([corners, np.tile([26.0, 60.0], (200, 1))]), np.ones(200), 0)
+
+    walking = np.column_stack([100.0 + frames, 80.0 + 0 * frames]) + rng.normal(0, 0.7, size=(200, 2))
+    drifting = np.column_stack([100.0 + 1.0 * frames + 3.0 * (frames % 2), 80.0 + 0 * frames])
+    assert _steadily_seen(track(walking), no_steady_pattern, transforms, params)
+    assert not _steadily_seen(track(drifting), no_steady_pattern, transforms, params)
+    assert not _steadily_seen(track(walking), no_steady_pattern, None, params)  # the camera was not read
+    assert _steadily_seen(track(drifting), np.array([True]), transforms, params)  # a steady pattern vouches
 
 
 def test_patterns_seen_whole_leave_a_cluster_seen_mostly_cut() -> None:

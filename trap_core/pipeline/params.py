@@ -105,7 +105,7 @@ class TrapParams:
                                   "(bricks, tiles); a cluster mostly (in occurrences) of such patterns, but where "
                                   "steady ones of it are seen, or with none steady, half in hops on average, is "
                                   "background; unsupervised, a track whose cluster has no steady pattern is not "
-                                  "counted; 0 = off")
+                                  "counted unless its own boxes step steadily; 0 = off")
     own_region: bool = _p(True, "robust: a cluster selected as a track whose own region (the one most of its "
                                 "occurrences hold) is found again, tau/5 frames before and after, where the camera's "
                                 "motion puts it more often than where the cluster's motion does stays with the scene "

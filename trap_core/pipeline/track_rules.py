@@ -25,7 +25,8 @@ from trap_core.robust import (GroupBoxes, colour_overlap, colour_shares, continu
                               drop_strays, end_at_exits, entering_part, extend_from_twins, fill_gaps, grow_boxes,
                               join_handovers, join_returns, join_spare_returns, keep_one_size, lookalike_tracks,
                               mend_shared_stretches, merge_duplicates, merge_parts, separate_groups,
-                              spare_entries, steady_edges, swap_at_crossings, through_groups, world_reach)
+                              spare_entries, steady_edges, swap_at_crossings, through_groups, track_steps_steadily,
+                              world_reach)
 
 
 @dataclass
@@ -143,7 +144,9 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
     if robust and params.one_track:
         tracks = merge_parts(tracks, params.tau)
     if counted:
-        tracks = [t for t in tracks if _goes_somewhere(t, tracks_of.transforms) and _steadily_seen(t, clusters.steady)]
+        transforms = tracks_of.transforms
+        tracks = [t for t in tracks
+                  if _goes_somewhere(t, transforms) and _steadily_seen(t, clusters.steady, transforms, params)]
         tracks = _long_enough(tracks, need, params.pass_frames(n_frames), n_frames, view, short)
     if robust and params.steady_edges:
         tracks = [steady_edges(t, motion_window, width, height) for t in tracks]
@@ -179,13 +182,17 @@ def _goes_somewhere(track: Track, transforms: np.ndarray | None) -> bool:
     return len(track) > 0 and world_reach(track, transforms) >= usual_size(track)
 
 
-def _steadily_seen(track: Track, steady: np.ndarray | None) -> bool:
+def _steadily_seen(track: Track, steady: np.ndarray | None, transforms: np.ndarray | None, params: TrapParams) -> bool:
     """Whether one of the patterns of ``track``'s cluster moves steadily in the world (``steady``,
-    per cluster; None: not read). Noise makes and unmakes structures over a smooth or grainy
-    ground, and a chain of them can pass every test of a cluster's motion with not one pattern
-    whose steps follow each other as an object's do; every object's track has one (README,
-    tracks with no steady pattern)."""
-    return steady is None or bool(steady[track.cluster])
+    per cluster; None: not read), or, with none, the track's own boxes do. Noise makes and
+    unmakes structures over a smooth or grainy ground, and a chain of them can pass every test of
+    a cluster's motion with not one pattern whose steps follow each other as an object's do, nor
+    boxes that do; every object's track has one or the other (README, tracks with no steady
+    pattern)."""
+    if steady is None or steady[track.cluster]:
+        return True
+    return transforms is not None and track_steps_steadily(track, transforms, max(1, params.tau // 2),
+                                                           params.steady_steps)
 
 
 def _passes_through(track: Track, n_frames: int, view: tuple[int, int]) -> bool:

@@ -20,7 +20,7 @@ from trap_core.robust import (CUT_SHARE, HELD_SHARE, HOP_SHARE, SHADOWED_SHARE, 
                               border_contacts, border_share, camera_paths, camera_transforms, cluster_world_speed,
                               hand_to_owners, held_share, moves_in_hops, pattern_sizes, rejoin_fragments,
                               scene_patterns, shadowed, split_mixed, stays_with_scene, steady_clusters, steady_patterns,
-                              whole_patterns_apart, without_backdrop, world_speed, world_steps)
+                              unsteady_steps, whole_patterns_apart, without_backdrop, world_speed, world_steps)
 
 
 @dataclass
@@ -238,8 +238,7 @@ def _pattern_motion(observed: ObservedPaths, transforms: np.ndarray, n_patterns:
     if params.steady_steps <= 0:
         return speed, np.zeros(n_patterns, dtype=bool), np.zeros(n_patterns)
     median, mean, in_hops = world_steps(observed, transforms, n_patterns, hop=hop)
-    unsteady = (median < params.steady_steps * speed) | (mean > speed / params.steady_steps)
-    return speed, unsteady, in_hops
+    return speed, unsteady_steps(median, mean, speed, params.steady_steps), in_hops
 
 
 def _with_boxes(result: MiningResult, placed: MiningResult, patterns: np.ndarray) -> np.ndarray:

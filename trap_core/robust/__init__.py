@@ -19,7 +19,7 @@ from trap_core.robust.duplicates import (drop_repeated_pieces, drop_shared_stret
 from trap_core.robust.extent import grow_boxes
 from trap_core.robust.gaps import fill_gaps
 from trap_core.robust.groups import separate_groups
-from trap_core.robust.hops import moves_in_hops, steady_clusters, steady_patterns
+from trap_core.robust.hops import moves_in_hops, steady_clusters, steady_patterns, track_steps_steadily, unsteady_steps
 from trap_core.robust.mixed import pattern_sizes, split_mixed
 from trap_core.robust.owners import hand_to_owners
 from trap_core.robust.rejoin import (CUT_SHARE, BorderContacts, border_contacts, border_share, rejoin_fragments,
@@ -40,4 +40,4 @@ __all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderCont
            "merge_parts", "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments", "repeats_others",
            "scene_patterns", "separate_groups", "shadowed", "spare_entries", "split_mixed", "stays_with_scene",
            "steady_clusters", "steady_edges", "steady_patterns", "swap_at_crossings", "through_groups",
-           "whole_patterns_apart", "without_backdrop", "world_reach", "world_speed", "world_steps"]
+           "track_steps_steadily", "unsteady_steps", "whole_patterns_apart", "without_backdrop", "world_reach", "world_speed", "world_steps"]

@@ -30,17 +30,44 @@ frames apart, are hop-sized anyway.
 
 A cluster with no steady pattern that passes all of this (chains whose uneven steps are shorter
 than a hop) is still no evidence of an object: :func:`steady_clusters` tells the track rules,
-which leave such a cluster's track out of the unsupervised count (README, tracks with no steady
-pattern).
+which leave such a cluster's track out of the unsupervised count unless the track's own boxes
+step steadily (:func:`track_steps_steadily`; README, tracks with no steady pattern).
 """
 from __future__ import annotations
 
 import numpy as np
 
+from trap_core.clustering import ObservedPaths, Track, box_centres
 from trap_core.mining import MiningResult
-from trap_core.robust.camera import HOP_SHARE
+from trap_core.robust.camera import HOP_SHARE, world_speed, world_steps
 
 VOUCHED_SHARE = 0.5  # a hopping pattern with this share of its occurrences where a steady one of its cluster is seen
+
+
+def unsteady_steps(median: np.ndarray, mean: np.ndarray, speed: np.ndarray, share: float) -> np.ndarray:
+    """Which paths do not step as an object does, from their ``median`` and ``mean`` world step
+    per frame and their ``speed`` over many frames (:func:`~trap_core.robust.camera.world_steps`,
+    :func:`~trap_core.robust.camera.world_speed`): the median under ``share`` of the speed (still
+    between hops) or the mean over its inverse times it (back and forth; README, steady steps).
+    A NaN median (never seen in frames close enough) compares False."""
+    return (median < share * speed) | (mean > speed / share)
+
+
+def track_steps_steadily(track: Track, transforms: np.ndarray, lag: int, share: float) -> bool:
+    """Whether ``track``'s box centres step steadily in the world (:func:`unsteady_steps`, speed
+    over ``lag`` frames). A slow object whose cluster holds few patterns (a person over a JPEG
+    road: two, at about 1 px a frame) can have none steady, each pattern's barycentre jittering
+    by twice its speed as limbs and compression change its regions, while the track's boxes,
+    built from all the object's regions, follow it. A chain of noise-born structures has no
+    object under it, and its boxes jitter as its patterns do (README, tracks with no steady
+    pattern)."""
+    if not len(track):
+        return False
+    path = ObservedPaths(np.zeros(len(track), dtype=np.int64), track.frames.astype(np.int64),
+                         box_centres(track.boxes).astype(np.float64))
+    speed = world_speed(path, transforms, 1, lag)
+    median, mean, _ = world_steps(path, transforms, 1, hop=np.inf)  # the share in hops is not read
+    return not bool(unsteady_steps(median, mean, speed, share)[0])
 
 
 def steady_patterns(unsteady: np.ndarray, in_hops: np.ndarray, speed: np.ndarray, hop: float) -> np.ndarray:

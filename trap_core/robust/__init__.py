@@ -40,4 +40,5 @@ __all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderCont
            "merge_parts", "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments", "repeats_others",
            "scene_patterns", "separate_groups", "shadowed", "spare_entries", "split_mixed", "stays_with_scene",
            "steady_clusters", "steady_edges", "steady_patterns", "swap_at_crossings", "through_groups",
-           "track_steps_steadily", "unsteady_steps", "whole_patterns_apart", "without_backdrop", "world_reach", "world_speed", "world_steps"]
+           "track_steps_steadily", "unsteady_steps", "whole_patterns_apart", "without_backdrop", "world_reach",
+           "world_speed", "world_steps"]

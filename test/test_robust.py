@@ -1548,6 +1548,34 @@ def test_an_object_back_in_view_for_the_videos_last_20_frames_is_tracked_there()
     assert recall_back(8) >= 0.75 and recall_back(0) == 0.0
 
 
+def test_a_fast_object_the_videos_start_cuts_short_is_tracked_though_its_patterns_step_in_hops() -> None:
+    """An object drives 8 px a frame over a plain ground and is hidden after 31 of 40 frames; its
+    lights blink, so each of its two looks is seen every other frame (a parked look-alike shows
+    each look all along). Its patterns are cut short by the video's start, and every step of
+    theirs, two frames apart, is a hop of ``eps``/4: but at over half a hop a frame that is what
+    an object's steps are (steady evidence, :func:`trap_core.robust.steady_patterns`), so they
+    are clustered and the object has a track."""
+    params = TrapParams(segmentation="colour")
+    cells = np.random.default_rng(3).integers(30, 220, (6, 16, 3)).astype(np.uint8)
+    ground = np.kron(cells, np.ones((20, 20, 1), np.uint8))
+    ground[20:100, 20:300] = (90, 90, 90)  # a plain ground (the backdrop) inside a frame of cells
+    looks = [((220, 0, 0), (0, 200, 0)), ((0, 0, 230), (230, 230, 0))]
+    for x, (left, right) in zip((60, 200), looks):
+        ground[80:92, x:x + 10], ground[80:92, x + 10:x + 20] = left, right
+    graphs, truth = [], {}
+    for t in range(40):
+        rgb = ground.copy()
+        x = 30 + 8 * t
+        if x + 20 <= 290:
+            rgb[44:56, x:x + 10], rgb[44:56, x + 10:x + 20] = looks[t % 2]
+            truth[t] = (x, 44, 20, 12)
+        graphs.append(frame_graph(rgb, params))
+    tracks = track(graphs, params).tracks
+    assert len(tracks) == 1
+    precision, recall = box_precision_recall(boxes_by_frame(tracks[0]), truth)
+    assert precision >= 0.8 and recall >= 0.95
+
+
 def test_a_track_entering_is_continued_back_and_a_stop_at_the_border_is_not() -> None:
     from trap_core.clustering import Track
     from trap_core.robust import continue_to_border

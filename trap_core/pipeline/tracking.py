@@ -80,8 +80,9 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
         speed, unsteady, in_hops = _pattern_motion(observed, transforms, mined.n_st, params, hop)
         hopping = unsteady & (in_hops >= HOP_SHARE)  # between look-alikes of the background
         steady = steady_patterns(unsteady, in_hops, speed, hop)  # vouch for their clusters
-        # a pattern cut short has its speed read over few frames, where jitter passes for motion
-        clustered = np.flatnonzero((speed >= still_below) & ~(cut_short & (unsteady | (in_hops >= HOP_SHARE))))
+        # a pattern cut short has its speed read over few frames, where jitter passes for motion:
+        # clustered only if it is steady evidence (a fast one's steps are hops by themselves)
+        clustered = np.flatnonzero((speed >= still_below) & ~(cut_short & ~steady))
     sub_paths = trajectories(observed, clustered)
     if cut_short[clustered].any():  # those on objects that longer patterns follow add nothing
         kept = np.flatnonzero(~cut_short[clustered] | alone_at_ends(sub_paths, cut_short[clustered],

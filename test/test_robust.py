@@ -441,6 +441,25 @@ def test_rejoin_continues_a_fragment_that_broke_up_short_of_the_border_with_one_
     assert labels[0] == labels[1] != labels[2]
 
 
+def test_rejoin_takes_a_return_as_sure_only_where_the_fragment_itself_begins_at_the_border() -> None:
+    """A leaves through the right border of a 640x360 view; 45 frames later B comes back in
+    there, showing one of A's two structures, while C, far inside the view, shows both. One of
+    C's patterns reads as entering (its first box, which holds a large ground region, reached
+    the top edge), but C itself begins 100 px from any border: it is not a sure return, and A is
+    continued by B, which is."""
+    line = lambda n, x0, dx: np.column_stack([x0 + dx * np.arange(n), np.full(n, 180.0)])  # noqa: E731
+    a, b, c = line(55, 470, 3), line(40, 630, -3), line(40, 300, 2) - [0.0, 80.0]
+    paths = _paths([(0, a), (0, a), (100, b), (100, c), (100, c)])
+    contacts = _sure(np.array([False, False, True, True, False]), np.array([True, True, False, False, False]))
+
+    def rejoined(view: tuple[float, float] | None) -> np.ndarray:
+        return rejoin_fragments(np.array([0, 0, 1, 2, 2]), paths, np.array([5, 6, 5, 5, 6]), 140, max_overlap=0,
+                                at_border=contacts, max_apart=40.0, view=view)
+    assert rejoined(None)[0] == rejoined(None)[3] != rejoined(None)[2]  # by what both show alone
+    labels = rejoined((640, 360))
+    assert labels[0] == labels[2] != labels[3]
+
+
 def test_rejoin_takes_a_fragment_going_out_back_inside_the_view_only_where_its_motion_puts_it() -> None:
     """A's pattern broke up 12 px short of the right border, going out (it may be going to the
     border, it does not surely leave). 46 frames later, B appears inside the view 400 px from

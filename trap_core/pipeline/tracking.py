@@ -134,7 +134,8 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                                                       reach=params.tau),
                                       mined.st_occurrences[patterns], transforms,
                                       adjacent_gap=max(1, params.tau // 10), adjacent_reach=params.eps / 4,
-                                      lone_gap=params.tau, max_apart=params.eps, colours=colours)
+                                      lone_gap=params.tau, max_apart=params.eps, colours=colours,
+                                      view=(width, height))
         return hierarchy, labels
 
     hierarchy, labels = cluster(clustered, mined, sub_paths)

@@ -106,7 +106,8 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
                      at_border: BorderContacts | None = None,
                      weights: np.ndarray | None = None, transforms: np.ndarray | None = None,
                      adjacent_gap: int = 0, adjacent_reach: float = 0.0, lone_gap: int = 0,
-                     max_apart: float = np.inf, colours: EndColours | None = None) -> np.ndarray:
+                     max_apart: float = np.inf, colours: EndColours | None = None,
+                     view: tuple[float, float] | None = None) -> np.ndarray:
     """Cluster labels (0..C'-1) after joining fragments of the same object.
 
     Candidate pairs and their costs are computed once on the fragments; they are then taken
@@ -135,6 +136,10 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     entry, or more than ``lone_gap`` frames apart, are joined only where their colours match
     (``MIN_MATCH``). Where one group's fragment follows the other's after a gap, it must begin
     within reach of where that one ended (:class:`FragmentReach`, ``max_apart`` of slack).
+    With the ``view``'s width and height, a pair is a sure exit and entry (taken before the
+    others) only where the earlier fragment itself ends, and the later begins, within
+    ``max_apart`` of its border: a pattern's flag says only that its first (last) box reached
+    the border, and a box that holds a large ground region reaches it from far inside.
     """
     labels = np.unique(labels, return_inverse=True)[1]
     summary = summarise(labels, paths, np.ones(labels.size), n_frames)
@@ -164,7 +169,13 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
         turned = to_border[earlier] & ~leaves[earlier] & ~from_border[later] & (gap[earlier, later] > lone_gap)
         keep &= ~turned | (costs <= max_apart)
     earlier, later, costs = earlier[keep], later[keep], costs[keep]
-    unsure = np.zeros(costs.size, dtype=bool) if at_border is None else leaves[earlier] != enters[later]
+    unsure = np.zeros(costs.size, dtype=bool)
+    if at_border is not None:  # surely out and in only where the fragments themselves end and begin at the border
+        surely_out, surely_in = leaves, enters
+        if view is not None:
+            surely_out = leaves & _by_border(summary.paths, summary.paths.end, view, max_apart)
+            surely_in = enters & _by_border(summary.paths, summary.paths.start, view, max_apart)
+        unsure = surely_out[earlier] != surely_in[later]
     # out of the view an object's motion says little: what both fragments show goes first (to a tenth)
     shown = (np.zeros(costs.size) if at_border is None
              else np.where(leaves[earlier] & enters[later], -np.round(both_ways[earlier, later], 1), 0.0))
@@ -192,6 +203,13 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
         group[group == b] = a
         group_covered[a] |= group_covered[b]
     return np.unique(group[labels], return_inverse=True)[1]
+
+
+def _by_border(paths: Trajectories, frames: np.ndarray, view: tuple[float, float], reach: float) -> np.ndarray:
+    """Per trajectory of ``paths``: whether its point in ``frames`` (one frame each) lies within
+    ``reach`` px of the border of the ``view`` (width, height)."""
+    points = np.array([paths.at(k, int(frame)) for k, frame in enumerate(frames)]).reshape(-1, 2)
+    return _distance_to_border(points, *view) <= reach
 
 
 def _going_along(summary: ClusterSummary, overlap: np.ndarray, min_frames: int, reach: float) -> np.ndarray:
@@ -346,7 +364,12 @@ def _drift(result: MiningResult, start: np.ndarray, end: np.ndarray) -> np.ndarr
 def _border_distance(result: MiningResult, rows: np.ndarray, width: float, height: float) -> np.ndarray:
     """Distance of occurrences' box centres (``rows``) to the nearest image border."""
     box = result.occ_box[rows].astype(float)
-    x, y = (box[:, 0] + box[:, 2]) / 2, (box[:, 1] + box[:, 3]) / 2
+    return _distance_to_border(np.column_stack([box[:, 0] + box[:, 2], box[:, 1] + box[:, 3]]) / 2, width, height)
+
+
+def _distance_to_border(points: np.ndarray, width: float, height: float) -> np.ndarray:
+    """(N,) distance of ``points`` (N, 2) to the nearest border of a ``width`` x ``height`` view."""
+    x, y = points[:, 0], points[:, 1]
     return np.minimum.reduce([x, y, width - x, height - y])
 
 

@@ -172,9 +172,11 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     unsure = np.zeros(costs.size, dtype=bool)
     if at_border is not None:  # surely out and in only where the fragments themselves end and begin at the border
         surely_out, surely_in = leaves, enters
-        if view is not None:
-            surely_out = leaves & _by_border(summary.paths, summary.paths.end, view, max_apart)
-            surely_in = enters & _by_border(summary.paths, summary.paths.start, view, max_apart)
+        if view is not None:  # each fragment's mean path: its last and first points
+            ends = summary.paths.points[summary.paths.offsets[1:] - 1]
+            starts = summary.paths.points[summary.paths.offsets[:-1]]
+            surely_out = leaves & (_distance_to_border(ends, *view) <= max_apart)
+            surely_in = enters & (_distance_to_border(starts, *view) <= max_apart)
         unsure = surely_out[earlier] != surely_in[later]
     # out of the view an object's motion says little: what both fragments show goes first (to a tenth)
     shown = (np.zeros(costs.size) if at_border is None
@@ -203,13 +205,6 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
         group[group == b] = a
         group_covered[a] |= group_covered[b]
     return np.unique(group[labels], return_inverse=True)[1]
-
-
-def _by_border(paths: Trajectories, frames: np.ndarray, view: tuple[float, float], reach: float) -> np.ndarray:
-    """Per trajectory of ``paths``: whether its point in ``frames`` (one frame each) lies within
-    ``reach`` px of the border of the ``view`` (width, height)."""
-    points = np.array([paths.at(k, int(frame)) for k, frame in enumerate(frames)]).reshape(-1, 2)
-    return _distance_to_border(points, *view) <= reach
 
 
 def _going_along(summary: ClusterSummary, overlap: np.ndarray, min_frames: int, reach: float) -> np.ndarray:

@@ -29,15 +29,16 @@ SIZES = ((320, 240), (400, 300), (640, 360), (640, 480), (800, 600), (960, 540),
 DELIVERIES = ({}, {"encoding": "bgra8"}, {"encoding": "yuv422"}, {"compressed": "jpeg"})
 
 
-def drawn_scenes(generator: int, videos: int) -> list[tuple[str, dict]]:
-    """``videos`` scenes (label, ``quality.py`` scene) drawn with the random generator ``generator``."""
+def drawn_scenes(generator: int, videos: int, enlarged: float = 1.0) -> list[tuple[str, dict]]:
+    """``videos`` scenes (label, ``quality.py`` scene) drawn with the random generator ``generator``,
+    their objects ``enlarged`` times the drawn scale (the same draw otherwise)."""
     rng = np.random.default_rng(generator)
     scenes = []
     for _ in range(videos):
         width, height = SIZES[rng.integers(len(SIZES))]
         scene = dict(seed=int(rng.integers(1_000_000)), identical=bool(rng.random() < 0.5),
                      shape=str(rng.choice([*SHAPES, MIXED])), objects=int(rng.integers(2, 6)),
-                     object_scale=float(rng.choice([0.8, 1.0, 1.2])), width=width, height=height,
+                     object_scale=round(enlarged * float(rng.choice([0.8, 1.0, 1.2])), 3), width=width, height=height,
                      frames=int(rng.choice([300, 400, 500])), zoom=float(rng.choice([0.0, 0.0, 0.05, 0.1, 0.15])),
                      rotation=float(rng.choice([0.0, 0.0, 5.0, 10.0, 15.0])),
                      illumination=float(rng.choice([0.0, 0.0, 0.05, 0.1])),
@@ -68,14 +69,21 @@ def main() -> None:
     parser.add_argument("--generator", type=int, required=True,
                         help="seed of the draw: a new one for videos no rule was made on")
     parser.add_argument("--videos", type=int, default=12, help="how many videos to draw (default 12)")
+    parser.add_argument("--enlarged", type=float, default=1.0,
+                        help="objects this many times their drawn scale (0.8-1.2), e.g. 2.5 for objects large in "
+                             "the view (default 1)")
     quality.add_run_arguments(parser)
     args = parser.parse_args()
     if args.videos < 1:
         parser.error(f"--videos must be at least 1, not {args.videos}")
+    if not 0.2 <= args.enlarged <= 5:
+        parser.error(f"--enlarged must be within 0.2..5, not {args.enlarged}")
     quality.check_overrides(parser, args.overrides)
-    name = f"drawn with generator {args.generator}"
+    name = f"drawn with generator {args.generator}" + (f", objects {args.enlarged:g} times larger"
+                                                       if args.enlarged != 1 else "")
     print(f"### {name}\n")
-    videos = [(label, scene, "felzenszwalb") for label, scene in drawn_scenes(args.generator, args.videos)]
+    videos = [(label, scene, "felzenszwalb")
+              for label, scene in drawn_scenes(args.generator, args.videos, args.enlarged)]
     quality.score_set(name, videos, args, lambda index, label: f"{args.generator}_{index}_{quality.slug(label)}")
 
 

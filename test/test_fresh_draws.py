@@ -39,3 +39,12 @@ def test_a_label_names_what_was_drawn(fresh_draws) -> None:
                  compressed="jpeg")
     assert fresh_draws.scene_label(scene) == ("distinct, mixed shapes, 4 objects 0.8x, 960x540, 400 frames, zoom 10 %, "
                                               "illumination 5 %, noise 1.5, gravel, JPEG")
+
+
+def test_enlarged_objects_are_the_same_draw_with_larger_objects(fresh_draws) -> None:
+    drawn = [scene for _, scene in fresh_draws.drawn_scenes(7, 6)]
+    enlarged = [scene for _, scene in fresh_draws.drawn_scenes(7, 6, enlarged=2.5)]
+    for usual, large in zip(drawn, enlarged):
+        assert large["object_scale"] == pytest.approx(2.5 * usual["object_scale"])
+        assert {**large, "object_scale": usual["object_scale"]} == usual
+        fresh_draws.quality._scene_config(large)

@@ -186,6 +186,10 @@ class TrapParams:
                                    "ask (ours: an object that crosses the view in seconds is seen whole); 0 = off")
     separation: float = _p(40.0, "px (of the working size, max_side): a cluster this close to kept tracks in most "
                                  "of its frames is not a new object (ours)")
+    size_separation: float = _p(0.5, "robust, n_objects = 0: where this share of the largest track's usual size "
+                                      "(the median of its boxes' larger side) is more than separation, clusters are "
+                                      "selected again with it as separation (ours: the parts of objects large in the "
+                                      "view stand further apart than separation); 0 = off")
     threads: int = _p(2, "frames segmented, or enumerated (mining), at once, and so bands of the pattern "
                          "distances and the clusters' tracks a rule asks for together")
 
@@ -215,7 +219,8 @@ class TrapParams:
             (self.n_objects >= 0 and 0 <= self.min_track_length <= 1, "n_objects >= 0, min_track_length within [0, 1]"),
             (self.min_track_frames >= 0 and self.min_pass_frames >= 0,
              "min_track_frames and min_pass_frames must be >= 0"),
-            (self.separation >= 0 and 1 <= self.threads <= 64, "separation >= 0 and threads within 1..64"),
+            (self.separation >= 0 and self.size_separation >= 0 and 1 <= self.threads <= 64,
+             "separation and size_separation >= 0, threads within 1..64"),
             (self.size_jump == 0 or self.size_jump > 1, "size_jump must be 0 (off) or more than 1"),
             (self.link_reach >= 0, "link_reach must be >= 0"),
             (self.min_speed >= 0 and 0 <= self.rejoin_similarity <= 1 and 0 <= self.core_share <= 1

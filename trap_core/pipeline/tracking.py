@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from trap_core.clustering import (ClusterSummary, Hierarchy, ObservedPaths, Track, Trajectories, cluster_patterns,
                                   observed_paths, pattern_distances, seen_frames, select_clusters, summarise,
-                                  trajectories)
+                                  trajectories, usual_size)
 from trap_core.mining import MiningResult
 from trap_core.pipeline.params import TrapParams
 from trap_core.pipeline.pattern_miner import PatternMiner
@@ -49,7 +49,9 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     per object when linking occurrences, only patterns that move relative to the camera's
     motion are clustered, and fragments of one object are rejoined across gaps; over a plain
     scene, clusters that move only once the backdrop is left out of their occurrences are
-    clustered again without it (:mod:`trap_core.robust.backdrop`).
+    clustered again without it (:mod:`trap_core.robust.backdrop`); without ``n_objects``, where half
+    the largest track's size (``size_separation``) is more than ``separation``, clusters are selected
+    again with that separation.
     """
     seconds: dict[str, float] = {}
     n_frames = len(graphs)
@@ -191,40 +193,57 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     own_frames = robust and params.own_frames
     seen = seen_frames(mined, clustered, labels, (width, height), region_boxes) if own_frames else None
 
-    def selection(eligible: np.ndarray | None) -> list[int]:
-        return select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
-                               params.selection_length(n_frames), params.separation, params.max_tracks(n_frames),
-                               eligible=eligible, own_frames=own_frames, seen=seen)
-    selected = selection(moving)
-    if robust and params.min_speed > 0 and params.own_region:  # until every selected cluster's own region moves
-        tested: set[int] = set()
-        while fresh := [c for c in selected if c not in tested]:
-            tested.update(fresh)
-            paths = summary.paths.dense(np.array(fresh), np.arange(n_frames))
-            still = [c for c, path in zip(fresh, paths)
-                     if stays_with_scene(mined, clustered[labels == c], path, stacked, transforms, params.core_share,
-                                         max(1, params.tau // 5))]
-            if not still:
-                break
-            moving = moving.copy()
-            moving[still] = False
-            selected = selection(moving)
-    all_labels = np.full(mined.n_st, -1, dtype=np.int64)
-    all_labels[clustered] = labels
-    if robust and params.min_speed > 0 and params.own_region and selected:  # each selected cluster's pattern too
-        rows = np.flatnonzero(np.isin(labels, selected))
-        scene = scene_patterns(mined, clustered[rows], sub_paths.subset(rows), n_frames, stacked, transforms,
-                               params.core_share, max(1, params.tau // 5))
-        all_labels[clustered[rows[scene]]] = -1
-        selected = [c for c in selected if (all_labels == c).any()]  # none left: all of it was the scene
-    if robust and params.one_object:
-        all_labels = hand_to_owners(mined, all_labels, selected, stacked)
-        selected = [c for c in selected if (all_labels == c).any()]  # none left: all of it lay on others' objects
-    steady_evidence = (steady_clusters(all_labels, steady, summary.length.size)  # of the patterns of their tracks
-                       if robust and params.min_speed > 0 else None)
-    clusters = Clusters(summary, selected, moving, labels, mined.st_pattern[clustered], occurrences, steady_evidence)
-    tracks = tracks_of_clusters(clusters, ClusterTracks(mined, all_labels, graphs, stacked, transforms, params),
-                                n_frames, (width, height), own_frames)
+    def selected_tracks(separation: float) -> tuple[list[int], np.ndarray, list[Track]]:
+        """The clusters selected with ``separation`` (frame px), the labels of every spatio-temporal
+        pattern once selection has taken the scene's patterns out of them, and their tracks."""
+        chosen_params = params if separation == params.separation else replace(params, separation=separation)
+        eligible_now = moving
+
+        def selection(eligible: np.ndarray | None) -> list[int]:
+            return select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
+                                   params.selection_length(n_frames), separation, params.max_tracks(n_frames),
+                                   eligible=eligible, own_frames=own_frames, seen=seen)
+        selected = selection(eligible_now)
+        if robust and params.min_speed > 0 and params.own_region:  # until every selected cluster's own region moves
+            tested: set[int] = set()
+            while fresh := [c for c in selected if c not in tested]:
+                tested.update(fresh)
+                paths = summary.paths.dense(np.array(fresh), np.arange(n_frames))
+                still = [c for c, path in zip(fresh, paths)
+                         if stays_with_scene(mined, clustered[labels == c], path, stacked, transforms,
+                                             params.core_share, max(1, params.tau // 5))]
+                if not still:
+                    break
+                eligible_now = eligible_now.copy()
+                eligible_now[still] = False
+                selected = selection(eligible_now)
+        all_labels = np.full(mined.n_st, -1, dtype=np.int64)
+        all_labels[clustered] = labels
+        if robust and params.min_speed > 0 and params.own_region and selected:  # each selected cluster's pattern too
+            rows = np.flatnonzero(np.isin(labels, selected))
+            scene = scene_patterns(mined, clustered[rows], sub_paths.subset(rows), n_frames, stacked, transforms,
+                                   params.core_share, max(1, params.tau // 5))
+            all_labels[clustered[rows[scene]]] = -1
+            selected = [c for c in selected if (all_labels == c).any()]  # none left: all of it was the scene
+        if robust and params.one_object:
+            all_labels = hand_to_owners(mined, all_labels, selected, stacked)
+            selected = [c for c in selected if (all_labels == c).any()]  # none left: all of it lay on others' objects
+        steady_evidence = (steady_clusters(all_labels, steady, summary.length.size)  # of the patterns of their tracks
+                           if robust and params.min_speed > 0 else None)
+        clusters = Clusters(summary, selected, eligible_now, labels, mined.st_pattern[clustered], occurrences,
+                            steady_evidence)
+        tracks_of = ClusterTracks(mined, all_labels, graphs, stacked, transforms, chosen_params)
+        tracks = tracks_of_clusters(clusters, tracks_of, n_frames, (width, height), own_frames)
+        return selected, all_labels, tracks
+
+    selected, all_labels, tracks = selected_tracks(params.separation)
+    if robust and not params.n_objects and params.size_separation > 0 and tracks:
+        wanted = params.size_separation * max(usual_size(t) for t in tracks)
+        # objects large in the view: parts of one (a person's head and legs, a car's two ends)
+        # stand further apart than separation, and each can be a track; the largest track's size
+        # says how far apart one object's parts can lie (README, "Objects large in the view")
+        if wanted > params.separation:
+            selected, all_labels, tracks = selected_tracks(wanted)
     seconds["clustering"] = time.perf_counter() - after_camera - seconds["distances"]
     return TrackingResult(mined, sub_paths, clustered, hierarchy, summary, selected, tracks, all_labels, seconds)
 

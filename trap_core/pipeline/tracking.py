@@ -196,12 +196,12 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
     def selected_tracks(separation: float) -> tuple[list[int], np.ndarray, list[Track]]:
         """The clusters selected with ``separation`` (frame px), the labels of every spatio-temporal
         pattern once selection has taken the scene's patterns out of them, and their tracks."""
-        chosen_params = params if separation == params.separation else replace(params, separation=separation)
+        chosen = replace(params, separation=separation)
         eligible_now = moving
 
         def selection(eligible: np.ndarray | None) -> list[int]:
             return select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
-                                   params.selection_length(n_frames), separation, params.max_tracks(n_frames),
+                                   params.selection_length(n_frames), chosen.separation, params.max_tracks(n_frames),
                                    eligible=eligible, own_frames=own_frames, seen=seen)
         selected = selection(eligible_now)
         if robust and params.min_speed > 0 and params.own_region:  # until every selected cluster's own region moves
@@ -232,7 +232,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                            if robust and params.min_speed > 0 else None)
         clusters = Clusters(summary, selected, eligible_now, labels, mined.st_pattern[clustered], occurrences,
                             steady_evidence)
-        tracks_of = ClusterTracks(mined, all_labels, graphs, stacked, transforms, chosen_params)
+        tracks_of = ClusterTracks(mined, all_labels, graphs, stacked, transforms, chosen)
         tracks = tracks_of_clusters(clusters, tracks_of, n_frames, (width, height), own_frames)
         return selected, all_labels, tracks
 

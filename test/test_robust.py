@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -276,6 +277,33 @@ def test_clusters_go_along_where_they_share_most_frames_close_by() -> None:
     expected = np.zeros((6, 6), dtype=bool)
     expected[0, 1] = expected[1, 0] = expected[2, 3] = expected[3, 2] = True
     np.testing.assert_array_equal(rejoin._going_along(summary, covered @ covered.T, 100, 10.0), expected)
+
+
+def test_pairs_within_reach_are_those_whose_mean_distance_is_within_it() -> None:
+    """The kernel behind going along stops reading a pair once its distances sum beyond reach
+    times the frames both cover: its verdicts are those of the mean over every shared frame,
+    for pairs far apart at first and together after (mean within reach), and for random ones."""
+    from trap_core.clustering import summarise
+    from trap_core.robust._kernels import pairs_within
+    rng = np.random.default_rng(5)
+    line = lambda start, n, y: np.column_stack([np.arange(start, start + n) * 2.0, np.full(n, y)])  # noqa: E731
+    apart_then_together = line(0, 200, 10.0)
+    apart_then_together[:10, 1] = 110.0  # 100 px apart for 10 of 200 frames: a mean of 5 px
+    tracks = [(0, line(0, 200, 10.0)), (0, apart_then_together)]
+    tracks += [(int(start), np.cumsum(rng.normal(0, 3, (n, 2)), axis=0) + rng.uniform(0, 60, 2))
+               for start, n in zip(rng.integers(0, 100, 30), rng.integers(20, 100, 30))]
+    paths = _paths(tracks)
+    summary = summarise(np.arange(len(tracks)), paths, np.ones(len(tracks)), 200)
+    covered = summary.covered
+    first, second = np.nonzero(np.triu(covered.astype(int) @ covered.T.astype(int) > 0, k=1))
+    both = np.count_nonzero(covered[first] & covered[second], axis=1)
+    mean = np.array([np.mean(np.linalg.norm(paths.at(a, f) - paths.at(b, f), axis=1))
+                     for a, b in zip(first, second) for f in [np.flatnonzero(covered[a] & covered[b])]])
+    for reach in (4.0, 6.0, 20.0, 50.0):
+        within = pairs_within(first, second, both, reach, covered, paths.start, paths.offsets, paths.points)
+        np.testing.assert_array_equal(within, mean <= reach)
+    assert pairs_within(np.array([0]), np.array([1]), np.array([200]), 6.0, covered, paths.start, paths.offsets,
+                        paths.points)[0]
 
 
 def test_structure_similarity_is_the_share_of_the_lesser_cluster_on_structures_both_have() -> None:
@@ -1008,23 +1036,17 @@ def test_robust_beats_paper_on_a_short_video(short_video) -> None:
     assert min(robust[:2]) > 0.5
 
 
-def test_tracks_built_and_distances_computed_on_threads_are_those_of_one_thread(short_video, monkeypatch) -> None:
-    """With ``threads`` 2 the pattern distances are filled in bands of rows and the clusters' tracks
-    that a rule asks for together are built at once, on worker threads: every track and label is
-    the same as on one thread, and each cluster asked for (in any order, more than once) gets its
-    own track."""
-    import threading
-
+def _spied_builds(monkeypatch, built: Callable[[int], object]) -> list:
+    """The ``ClusterTracks`` that :func:`track` hands the track rules from now on, one per
+    selection, in order; ``built`` is called with each cluster whose track one of them builds,
+    on the thread that builds it."""
     import trap_core.pipeline.tracking as tracking
     from trap_core.pipeline.track_rules import ClusterTracks
-    graphs, _ = short_video
-    one = track(graphs, dataclasses.replace(_BASE, threads=1))
-    built_on: set[str] = set()
     builders: list[ClusterTracks] = []
     build, rules = ClusterTracks._build, tracking.tracks_of_clusters
 
     def spied_build(self, cluster: int):
-        built_on.add(threading.current_thread().name)
+        built(cluster)
         return build(self, cluster)
 
     def spied_rules(clusters, tracks_of, *rest):
@@ -1032,6 +1054,19 @@ def test_tracks_built_and_distances_computed_on_threads_are_those_of_one_thread(
         return rules(clusters, tracks_of, *rest)
     monkeypatch.setattr(ClusterTracks, "_build", spied_build)
     monkeypatch.setattr(tracking, "tracks_of_clusters", spied_rules)
+    return builders
+
+
+def test_tracks_built_and_distances_computed_on_threads_are_those_of_one_thread(short_video, monkeypatch) -> None:
+    """With ``threads`` 2 the pattern distances are filled in bands of rows and the clusters' tracks
+    that a rule asks for together are built at once, on worker threads: every track and label is
+    the same as on one thread, and each cluster asked for (in any order, more than once) gets its
+    own track."""
+    import threading
+    graphs, _ = short_video
+    one = track(graphs, dataclasses.replace(_BASE, threads=1))
+    built_on: set[str] = set()
+    builders = _spied_builds(monkeypatch, lambda cluster: built_on.add(threading.current_thread().name))
     several = track(graphs, dataclasses.replace(_BASE, threads=2))
     assert any(name.startswith("trap-work") for name in built_on)
     np.testing.assert_array_equal(several.labels, one.labels)
@@ -1042,13 +1077,36 @@ def test_tracks_built_and_distances_computed_on_threads_are_those_of_one_thread(
     clusters = np.unique(several.labels[several.labels >= 0])[::-1].tolist()
     asked = [*clusters, clusters[0]]
     assert len(clusters) > 3
-    threaded, alone = (dataclasses.replace(builders[0], _built={}, params=dataclasses.replace(_BASE, threads=n))
-                       for n in (2, 1))
+    threaded, alone = (dataclasses.replace(builders[0], _built={}, by_patterns={},
+                                           params=dataclasses.replace(_BASE, threads=n)) for n in (2, 1))
     for mine, cluster in zip(threaded.many(asked), asked):
         theirs = alone(cluster)
         assert mine.cluster == cluster
         for field in dataclasses.fields(mine):
             np.testing.assert_array_equal(getattr(mine, field.name), getattr(theirs, field.name), err_msg=field.name)
+
+
+def test_a_second_selection_takes_the_tracks_of_clusters_whose_patterns_it_keeps(short_video, monkeypatch) -> None:
+    """Clusters' tracks built for one selection are taken by another over the same patterns (the
+    second selection of objects large in the view) without being built again, but a cluster
+    whose patterns changed (a pattern handed to another cluster) is built anew."""
+    graphs, _ = short_video
+    built: list[int] = []
+    builders = _spied_builds(monkeypatch, built.append)
+    track(graphs, _BASE)
+    first = builders[0]
+    clusters = list(first._built)
+    assert len(clusters) > 1
+    built.clear()
+    again = dataclasses.replace(first, _built={})
+    assert all(mine is theirs for mine, theirs in zip(again.many(clusters), first.many(clusters)))
+    assert built == []
+    changed = next(cluster for cluster in clusters if np.count_nonzero(first.labels == cluster) > 1)
+    labels = first.labels.copy()
+    labels[np.flatnonzero(labels == changed)[0]] = -1
+    rebuilt = dataclasses.replace(first, labels=labels, _built={})
+    assert rebuilt.many([changed])[0] is not first._built[changed]
+    assert built == [changed]
 
 
 def test_a_video_where_nothing_moves_relative_to_the_camera_has_no_tracks() -> None:

@@ -36,7 +36,10 @@ class ClusterTracks:
     filled. ``labels``: cluster of each spatio-temporal pattern of ``mined`` (-1: none);
     ``stacked``: every frame's plane graph, stacked once for every cluster's core regions and
     boxes (None where no rule reads them: the paper's method); ``transforms``: the camera's, or
-    None where no rule needs them."""
+    None where no rule needs them. ``by_patterns``: the tracks built, by cluster and its patterns,
+    shared with other instances over the same ``mined`` and parameters but for ``separation``,
+    which no build reads: a cluster whose patterns are those it had there has that track (the
+    second selection of objects large in the view keeps most clusters as they were)."""
 
     mined: MiningResult
     labels: np.ndarray
@@ -44,6 +47,7 @@ class ClusterTracks:
     stacked: StackedGraphs | None
     transforms: np.ndarray | None
     params: TrapParams
+    by_patterns: dict[tuple[int, bytes], Track] = field(default_factory=dict)
     _built: dict[int, Track] = field(default_factory=dict)
 
     def __call__(self, cluster: int, track_id: int = 0) -> Track:
@@ -55,9 +59,13 @@ class ClusterTracks:
         a build is mostly compiled kernels that release the GIL, and the rules that ask for
         several tracks (the selected clusters, the candidates that may mend or bring back a
         track) know them all before reading any."""
-        missing = [cluster for cluster in dict.fromkeys(clusters) if cluster not in self._built]
-        for cluster, built in zip(missing, each_on_threads(self._build, missing, self.params.threads)):
-            self._built[cluster] = built
+        wanted = [cluster for cluster in dict.fromkeys(clusters) if cluster not in self._built]
+        keys = {cluster: (cluster, np.flatnonzero(self.labels == cluster).tobytes()) for cluster in wanted}
+        fresh = [cluster for cluster in wanted if keys[cluster] not in self.by_patterns]
+        for cluster, built in zip(fresh, each_on_threads(self._build, fresh, self.params.threads)):
+            self.by_patterns[keys[cluster]] = built
+        for cluster in wanted:
+            self._built[cluster] = self.by_patterns[keys[cluster]]
         return [self._built[cluster] for cluster in clusters]
 
     @cached_property

@@ -192,6 +192,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                 region_boxes = _with_boxes(mined, free, clustered[apart])
     own_frames = robust and params.own_frames
     seen = seen_frames(mined, clustered, labels, (width, height), region_boxes) if own_frames else None
+    built: dict[tuple[int, bytes], Track] = {}  # each cluster's track by its patterns, for either selection
 
     def selected_tracks(separation: float) -> tuple[list[int], np.ndarray, list[Track]]:
         """The clusters selected with ``separation`` (frame px), the labels of every spatio-temporal
@@ -232,7 +233,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
                            if robust and params.min_speed > 0 else None)
         clusters = Clusters(summary, selected, eligible_now, labels, mined.st_pattern[clustered], occurrences,
                             steady_evidence)
-        tracks_of = ClusterTracks(mined, all_labels, graphs, stacked, transforms, chosen)
+        tracks_of = ClusterTracks(mined, all_labels, graphs, stacked, transforms, chosen, built)
         tracks = tracks_of_clusters(clusters, tracks_of, n_frames, (width, height), own_frames)
         return selected, all_labels, tracks
 

@@ -319,17 +319,20 @@ def region_steps(node_offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarra
 
 
 @nb.njit(cache=True, nogil=True)
-def mean_pair_distances(first: np.ndarray, second: np.ndarray, covered: np.ndarray, start: np.ndarray,
-                        offsets: np.ndarray, points: np.ndarray) -> np.ndarray:
-    """Per pair (``first[i]``, ``second[i]``) of clusters: the mean distance between their paths
-    (``start``, ``offsets``, ``points``: :class:`~trap_core.clustering.Trajectories`) over the
-    frames both cover (``covered``: (C, n_frames)); NaN where there are none. Only the frames
-    of the two spans are read, not the whole video's."""
-    out = np.full(first.size, np.nan)
+def pairs_within(first: np.ndarray, second: np.ndarray, both: np.ndarray, reach: float, covered: np.ndarray,
+                 start: np.ndarray, offsets: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Per pair (``first[i]``, ``second[i]``) of clusters: whether their paths (``start``,
+    ``offsets``, ``points``: :class:`~trap_core.clustering.Trajectories`) are on average at most
+    ``reach`` apart over the ``both[i]`` (> 0) frames both cover (``covered``: (C, n_frames)).
+    Only the frames of the two spans are read, and a pair's reading stops once its distances
+    sum beyond ``reach`` times ``both[i]``: most pairs lie far apart, and that shows in a few
+    frames."""
+    out = np.zeros(first.size, dtype=np.bool_)
     for i in range(first.size):
         a, b = first[i], second[i]
         lo = max(start[a], start[b])
         hi = min(start[a] + offsets[a + 1] - offsets[a], start[b] + offsets[b + 1] - offsets[b])
+        beyond = reach * both[i] * (1.0 + 1e-9)  # a sum past this is a mean past reach, whatever rounding
         total = 0.0
         count = 0
         for frame in range(lo, hi):
@@ -340,8 +343,9 @@ def mean_pair_distances(first: np.ndarray, second: np.ndarray, covered: np.ndarr
                 dy = points[pa, 1] - points[pb, 1]
                 total += np.sqrt(dx * dx + dy * dy)
                 count += 1
-        if count:
-            out[i] = total / count
+                if total > beyond:
+                    break
+        out[i] = count > 0 and total / count <= reach
     return out
 
 
@@ -350,7 +354,7 @@ def group_distances(first: np.ndarray, second: np.ndarray, frames: np.ndarray, c
                     start: np.ndarray, offsets: np.ndarray, points: np.ndarray) -> np.ndarray:
     """Per frame of ``frames``: the distance between the mean positions of the clusters in the
     masks ``first`` and ``second`` that cover it (``covered``: (C, n_frames); each frame covered
-    by both; paths as in :func:`mean_pair_distances`), each mean summed in cluster order."""
+    by both; paths as in :func:`pairs_within`), each mean summed in cluster order."""
     first_sums, first_counts = _group_sums(first, covered, start, offsets, points)
     second_sums, second_counts = _group_sums(second, covered, start, offsets, points)
     out = np.empty(frames.size)
@@ -472,7 +476,7 @@ def companions_apart(group: np.ndarray, group_covered: np.ndarray, companions: n
 def any_pair_apart(patterns: np.ndarray, sizes: np.ndarray, min_frames: int, start: np.ndarray, end: np.ndarray,
                    offsets: np.ndarray, points: np.ndarray) -> bool:
     """Whether two of ``patterns`` are further apart than half the sum of their ``sizes`` in at
-    least ``min_frames`` of the frames both cover (paths as in :func:`mean_pair_distances`; a
+    least ``min_frames`` of the frames both cover (paths as in :func:`pairs_within`; a
     pair stops being read once it has that many)."""
     if min_frames <= 0:
         return patterns.size > 1
@@ -538,7 +542,7 @@ def goes_along(short_rows: np.ndarray, long_rows: np.ndarray, sizes: np.ndarray,
                offsets: np.ndarray, points: np.ndarray) -> np.ndarray:
     """Per pattern of ``short_rows``: whether one of ``long_rows`` lies within half the smaller
     of their ``sizes`` of it in at least half of its frames (paths as in
-    :func:`mean_pair_distances`; points and reach in float32, to ``(reach / 2) ** 2``)."""
+    :func:`pairs_within`; points and reach in float32, to ``(reach / 2) ** 2``)."""
     along = np.zeros(short_rows.size, dtype=np.bool_)
     for i in range(short_rows.size):
         a = short_rows[i]

@@ -51,7 +51,7 @@ from scipy import sparse
 
 from trap_core.clustering import ClusterSummary, Trajectories, region_boxes_reach_border, summarise
 from trap_core.mining import MiningResult
-from trap_core.robust._kernels import companions_apart, cut_counts, group_distances, mean_pair_distances
+from trap_core.robust._kernels import companions_apart, cut_counts, group_distances, pairs_within
 from trap_core.robust.camera import map_points, to_world
 from trap_core.robust.end_colours import MIN_MATCH, EndColours
 from trap_core.robust.reach import TAIL, FragmentReach
@@ -191,8 +191,10 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     along = _going_along(summary, overlap, ALONG_FRAMES * max_overlap, max_apart / 4)
     for pair in np.lexsort((costs, shown, unsure)):
         a, b = group[earlier[pair]], group[later[pair]]
+        if a == b:
+            continue
         both = np.flatnonzero(group_covered[a] & group_covered[b])
-        if a == b or both.size > max_overlap:
+        if both.size > max_overlap:
             continue
         if both.size and _apart(summary, group == a, group == b, both) > max_apart:
             continue
@@ -217,8 +219,9 @@ def _going_along(summary: ClusterSummary, overlap: np.ndarray, min_frames: int, 
     if first.size == 0:
         return along
     paths = summary.paths
-    distance = mean_pair_distances(first, second, summary.covered, paths.start, paths.offsets, paths.points)
-    along[first, second] = along[second, first] = distance <= reach
+    within = pairs_within(first, second, overlap[first, second].astype(np.int64), reach, summary.covered,
+                          paths.start, paths.offsets, paths.points)
+    along[first, second] = along[second, first] = within
     return along
 
 

@@ -55,10 +55,10 @@ class ClusterTracks:
         return replace(self.many([cluster])[0], track_id=track_id)
 
     def many(self, clusters: Sequence[int]) -> list[Track]:
-        """The tracks of ``clusters`` (id 0), those not built yet built ``params.threads`` at once:
-        a build is mostly compiled kernels that release the GIL, and the rules that ask for
-        several tracks (the selected clusters, the candidates that may mend or bring back a
-        track) know them all before reading any."""
+        """The tracks of ``clusters`` (id 0), those not built yet taken from ``by_patterns`` or
+        built ``params.threads`` at once: a build is mostly compiled kernels that release the
+        GIL, and the rules that ask for several tracks (the selected clusters, the candidates
+        that may mend or bring back a track) know them all before reading any."""
         wanted = [cluster for cluster in dict.fromkeys(clusters) if cluster not in self._built]
         keys = {cluster: (cluster, np.flatnonzero(self.labels == cluster).tobytes()) for cluster in wanted}
         fresh = [cluster for cluster in wanted if keys[cluster] not in self.by_patterns]

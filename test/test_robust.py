@@ -306,6 +306,92 @@ def test_pairs_within_reach_are_those_whose_mean_distance_is_within_it() -> None
                         paths.points)[0]
 
 
+def test_rejoin_candidates_are_the_pairs_the_dense_tests_give_in_row_order() -> None:
+    """Rejoining reads its candidate pairs in one compiled pass over the fragments: they are
+    those of the matrix tests over every pair (later start, overlap, shared structures or a
+    near start, border flags), in the row order the pairs are then sorted from (ties keep it)."""
+    from trap_core.robust._kernels import long_overlaps, rejoin_candidates
+    rng = np.random.default_rng(11)
+    n = 60
+    share = rng.choice([0.0, 0.2, 0.3, 0.5, 1.0], (n, n))
+    overlap = rng.integers(0, 40, (n, n)).astype(np.float32)
+    overlap = np.triu(overlap) + np.triu(overlap, 1).T
+    start = rng.integers(0, 100, n)
+    end = start + rng.integers(0, 60, n)
+    flags = rng.random((4, n)) < 0.4
+    for near_counts, bordered in ((False, False), (True, False), (True, True)):
+        to_border, from_border, leaves, enters = flags if bordered else np.zeros((4, 0), dtype=bool)
+        earlier, later = rejoin_candidates(share, overlap, start, end, 25, 0.3, 5, near_counts, to_border,
+                                           from_border, leaves, enters)
+        gap = start[None, :] - end[:, None]
+        candidate = ((start[:, None] < start[None, :]) & (overlap <= 25)
+                     & ((np.maximum(share, share.T) >= 0.3) | (near_counts & (gap <= 5))))
+        if bordered:
+            candidate &= (to_border[:, None] & from_border[None, :]) | (~leaves[:, None] & ~enters[None, :])
+        want = np.nonzero(candidate)
+        assert want[0].size > 0
+        np.testing.assert_array_equal(earlier, want[0])
+        np.testing.assert_array_equal(later, want[1])
+    length = rng.integers(1, 60, n)
+    first, second = long_overlaps(overlap, length, 20, 0.8)
+    want = np.nonzero(np.triu((overlap >= 20) & (overlap >= 0.8 * np.minimum.outer(length, length)), k=1))
+    assert want[0].size > 0
+    np.testing.assert_array_equal(first, want[0])
+    np.testing.assert_array_equal(second, want[1])
+
+
+def test_away_from_boxes_is_half_the_stretch_covered_and_half_outside_every_box() -> None:
+    """The first test of a cluster that may mend a shared stretch, compiled: it covers half the
+    stretch and its path lies outside every other track's box in half of it (NaN boxes hold
+    nothing; a point on a box's edge is inside), as read frame by frame with numpy."""
+    from trap_core.clustering import points_in_boxes, summarise
+    from trap_core.robust._kernels import away_from_boxes
+    rng = np.random.default_rng(8)
+    tracks = [(int(start), np.cumsum(rng.normal(0, 3, (k, 2)), axis=0) + rng.uniform(20, 80, 2))
+              for start, k in zip(rng.integers(0, 60, 40), rng.integers(10, 100, 40))]
+    paths = _paths(tracks)
+    summary = summarise(np.arange(len(tracks)) % 30, paths, np.ones(len(tracks)), 160)
+    boxes = np.column_stack([rng.uniform(0, 80, (3 * 160, 2)), rng.uniform(10, 40, (3 * 160, 2))]).reshape(3, 160, 4)
+    boxes[rng.random((3, 160)) < 0.3] = np.nan
+    boxes[0, 50] = np.r_[summary.paths.at(4, 50), 5.0, 5.0] if summary.covered[4, 50] else boxes[0, 50]
+    clusters = np.arange(30)
+    for first, last in ((40, 70), (0, 159), (90, 95)):
+        stretch = np.arange(first, last + 1)
+        want = []
+        for cluster in clusters:
+            inside = stretch[summary.covered[cluster, stretch]]
+            away = ~np.any(points_in_boxes(summary.paths.at(cluster, inside), boxes[:, inside]), axis=0)
+            want.append(inside.size >= stretch.size / 2 and np.count_nonzero(away) >= stretch.size / 2)
+        got = away_from_boxes(clusters, first, last, summary.covered, summary.paths.start, summary.paths.offsets,
+                              summary.paths.points, boxes)
+        np.testing.assert_array_equal(got, want)
+    assert away_from_boxes(clusters, 40, 70, summary.covered, summary.paths.start, summary.paths.offsets,
+                           summary.paths.points, boxes).any()
+
+
+def test_near_frames_are_the_frames_both_cover_within_separation() -> None:
+    """Selection's per-frame test of a cluster against a kept one, compiled: the frames both
+    clusters cover where their paths lie within the separation, for random paths with gaps."""
+    from trap_core.clustering import summarise
+    from trap_core.clustering._kernels import near_frames
+    rng = np.random.default_rng(3)
+    tracks = [(int(start), np.cumsum(rng.normal(0, 4, (k, 2)), axis=0) + rng.uniform(0, 50, 2))
+              for start, k in zip(rng.integers(0, 80, 25), rng.integers(5, 90, 25))]
+    paths = _paths(tracks)
+    labels = np.arange(len(tracks)) % 20  # some clusters of two paths: their cover has gaps
+    summary = summarise(labels, paths, np.ones(len(tracks)), 200)
+    clusters = np.arange(20)
+    for other in (0, 7, 19):
+        near = near_frames(clusters, other, summary.covered, summary.paths.start, summary.paths.offsets,
+                           summary.paths.points, 15.0)
+        for row, cluster in enumerate(clusters):
+            want = np.zeros(200, dtype=bool)
+            both = np.flatnonzero(summary.covered[cluster] & summary.covered[other])
+            want[both] = np.linalg.norm(summary.paths.at(cluster, both) - summary.paths.at(other, both), axis=1) <= 15
+            np.testing.assert_array_equal(near[row], want)
+        assert near.any() and not near.all()
+
+
 def test_structure_similarity_is_the_share_of_the_lesser_cluster_on_structures_both_have() -> None:
     from trap_core.robust.rejoin import structure_similarity
     labels, st_pattern = np.array([0, 0, 0, 1, 1, 2]), np.array([4, 4, 7, 7, 9, 3])

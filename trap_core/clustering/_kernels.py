@@ -240,3 +240,25 @@ def stacked_core_regions(face_sets: np.ndarray, lifetimes: np.ndarray, frames: n
         top_ends[k] = n_tops
         start = ends[k]
     return cores[:n_cores], core_ends, tops[:n_tops], top_ends
+
+
+@nb.njit(cache=True, nogil=True)
+def near_frames(clusters: np.ndarray, other: int, covered: np.ndarray, start: np.ndarray, offsets: np.ndarray,
+                points: np.ndarray, separation: float) -> np.ndarray:
+    """(len(clusters), n_frames) bool: frames where each cluster's path (``start``, ``offsets``,
+    ``points``: :class:`~trap_core.clustering.Trajectories`) is within ``separation`` of cluster
+    ``other``'s, both covering the frame (``covered``: (C, n_frames)). Selection asks it of every
+    candidate against every kept cluster (:func:`trap_core.clustering.selection._near_frames`)."""
+    near = np.zeros((clusters.size, covered.shape[1]), dtype=np.bool_)
+    other_end = start[other] + offsets[other + 1] - offsets[other]
+    for row in range(clusters.size):
+        cluster = clusters[row]
+        for frame in range(max(start[cluster], start[other]),
+                           min(start[cluster] + offsets[cluster + 1] - offsets[cluster], other_end)):
+            if covered[cluster, frame] and covered[other, frame]:
+                here = offsets[cluster] + frame - start[cluster]
+                there = offsets[other] + frame - start[other]
+                dx = points[here, 0] - points[there, 0]
+                dy = points[here, 1] - points[there, 1]
+                near[row, frame] = np.sqrt(dx * dx + dy * dy) <= separation
+    return near

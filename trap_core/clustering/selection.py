@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from trap_core.clustering._kernels import cluster_sums
+from trap_core.clustering._kernels import cluster_sums, near_frames
 from trap_core.clustering.tracks import region_boxes_reach_border
 from trap_core.clustering.trajectory import Trajectories
 from trap_core.mining import MiningResult
@@ -158,15 +158,8 @@ def _near_frames(summary: ClusterSummary, clusters: np.ndarray, other: int, sepa
     """(len(clusters), n_frames) bool: frames where each cluster's mean position is within
     ``separation`` pixels of the mean position of cluster ``other`` (both covering the frame)."""
     paths = summary.paths
-    there = np.full((summary.covered.shape[1], 2), np.nan)
-    frames = np.flatnonzero(summary.covered[other])
-    there[frames] = paths.at(other, frames)
-    near = np.zeros((clusters.size, summary.covered.shape[1]), dtype=bool)
-    for row, cluster in enumerate(clusters):
-        both = np.flatnonzero(summary.covered[cluster] & summary.covered[other])
-        here = paths.at(cluster, both)
-        near[row, both] = np.linalg.norm(here - there[both], axis=1) <= separation
-    return near
+    return near_frames(np.asarray(clusters, dtype=np.int64), int(other), summary.covered, paths.start, paths.offsets,
+                       paths.points, float(separation))
 
 
 def twin_clusters(summary: ClusterSummary, chosen: list[int], n_frames: int, min_length: float, separation: float,

@@ -319,6 +319,80 @@ def region_steps(node_offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarra
 
 
 @nb.njit(cache=True, nogil=True)
+def rejoin_candidates(share: np.ndarray, overlap: np.ndarray, start: np.ndarray, end: np.ndarray, max_overlap: int,
+                      min_similarity: float, near_gap: int, near_counts: bool, to_border: np.ndarray,
+                      from_border: np.ndarray, leaves: np.ndarray, enters: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs (earlier, later) of fragments that may be one object's, in row order
+    (:func:`trap_core.robust.rejoin_fragments`): ``later`` starts after ``earlier``, they share at
+    most ``max_overlap`` frames (``overlap``: (C, C)), and either one's ``share`` of structures in
+    the other is at least ``min_similarity`` or, with ``near_counts``, ``later`` starts at most
+    ``near_gap`` frames after ``earlier`` ends. With the four border flags (per fragment; empty:
+    not read), ``earlier`` may go to the border and ``later`` come from it, or neither left nor
+    entered. One pass over the pairs, as a textured scene has thousands of fragments."""
+    first, second = [], []
+    bordered = to_border.size > 0
+    for i in range(start.size):
+        for j in range(start.size):
+            if start[i] >= start[j] or overlap[i, j] > max_overlap:
+                continue
+            if not (share[i, j] >= min_similarity or share[j, i] >= min_similarity
+                    or (near_counts and start[j] - end[i] <= near_gap)):
+                continue
+            if bordered and not ((to_border[i] and from_border[j]) or (not leaves[i] and not enters[j])):
+                continue
+            first.append(i)
+            second.append(j)
+    return np.array(first, dtype=np.int64), np.array(second, dtype=np.int64)
+
+
+@nb.njit(cache=True, nogil=True)
+def long_overlaps(overlap: np.ndarray, length: np.ndarray, min_frames: int, min_share: float
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs i < j, in row order, that share (``overlap``: (C, C) frames) at least
+    ``min_frames`` frames and ``min_share`` of the shorter one's ``length``: candidates for
+    going along one object (:func:`trap_core.robust.rejoin._going_along`)."""
+    first, second = [], []
+    for i in range(length.size):
+        for j in range(i + 1, length.size):
+            if overlap[i, j] >= min_frames and overlap[i, j] >= min_share * min(length[i], length[j]):
+                first.append(i)
+                second.append(j)
+    return np.array(first, dtype=np.int64), np.array(second, dtype=np.int64)
+
+
+@nb.njit(cache=True, nogil=True)
+def away_from_boxes(clusters: np.ndarray, first: int, last: int, covered: np.ndarray, start: np.ndarray,
+                    offsets: np.ndarray, points: np.ndarray, boxes: np.ndarray) -> np.ndarray:
+    """Per cluster of ``clusters``: whether, of frames ``first``..``last``, it covers at least half
+    (``covered``: (C, n_frames)) and, in at least half, its path (``start``, ``offsets``,
+    ``points``: :class:`~trap_core.clustering.Trajectories`) lies in none of the ``boxes``
+    ((T, n_frames, 4) x, y, w, h; NaN where none, edges inside): a cluster that may hold a
+    track's object where that track's boxes repeat another's
+    (:func:`trap_core.robust.continuation.mend_shared_stretches`)."""
+    half = (last - first + 1) / 2
+    out = np.zeros(clusters.size, dtype=np.bool_)
+    for k in range(clusters.size):
+        cluster = clusters[k]
+        seen = 0
+        away = 0
+        for frame in range(first, last + 1):
+            if not covered[cluster, frame]:
+                continue
+            seen += 1
+            row = offsets[cluster] + frame - start[cluster]
+            x, y = points[row, 0], points[row, 1]
+            held = False
+            for t in range(boxes.shape[0]):
+                box = boxes[t, frame]
+                if x >= box[0] and y >= box[1] and x <= box[0] + box[2] and y <= box[1] + box[3]:
+                    held = True
+                    break
+            away += not held
+        out[k] = seen >= half and away >= half
+    return out
+
+
+@nb.njit(cache=True, nogil=True)
 def pairs_within(first: np.ndarray, second: np.ndarray, both: np.ndarray, reach: float, covered: np.ndarray,
                  start: np.ndarray, offsets: np.ndarray, points: np.ndarray) -> np.ndarray:
     """Per pair (``first[i]``, ``second[i]``) of clusters: whether their paths (``start``,

@@ -30,6 +30,7 @@ import numpy as np
 
 from trap_core.clustering import (ClusterSummary, Track, box_centres, box_iou, box_path, centre_path, in_rows,
                                   points_in_boxes, reaches_border, with_frames)
+from trap_core.robust._kernels import away_from_boxes
 from trap_core.robust.duplicates import repeats_others, same_boxes, shared_stretches
 from trap_core.robust.motion import straight_line
 
@@ -124,6 +125,7 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
     hiding = [t for t in others if box_iou(edge_box, box_path(t, summary.covered.shape[1])[edge])[0] > 0]
     own = box_path(current, summary.covered.shape[1])  # read against every candidate
     near = []
+    close: list[tuple[int, float]] = []  # candidates that go on within window frames, their error off the line
     for cluster in candidates.tolist():
         covered = np.flatnonzero(summary.covered[cluster, lo:hi] & ~lent[cluster, lo:hi]) + lo
         if covered.size < window:
@@ -131,12 +133,16 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
         nearest = int(covered[-1] if backward else covered[0])
         position = summary.paths.at(cluster, nearest)
         if abs(nearest - edge) <= window:
-            error = min(float(np.linalg.norm(position - (origin + velocity * nearest))),
-                        _held_up_to(own, edge, summary, cluster, window, backward))
-        else:
-            error = _out_from_hiding(hiding, position, edge, nearest, window)
+            close.append((cluster, float(np.linalg.norm(position - (origin + velocity * nearest)))))
+            continue
+        error = _out_from_hiding(hiding, position, edge, nearest, window)
         if error <= reach:
             near.append((error, cluster))
+    held = _held_up_to(own, edge, summary, np.array([cluster for cluster, _ in close], dtype=np.int64), window,
+                       backward)
+    for (cluster, off_line), held_error in zip(close, held.tolist()):
+        if min(off_line, held_error) <= reach:
+            near.append((min(off_line, held_error), cluster))
     crossing = reaches_border(edge_box, *view)[0]
     beyond = origin + velocity * (edge - window if backward else edge + window)  # where its motion goes
     outward = crossing and not (0 <= beyond[0] <= view[0] and 0 <= beyond[1] <= view[1])
@@ -388,8 +394,9 @@ def _menders(boxes: np.ndarray, slot: int, stretch_ends: tuple[int, int], summar
     """The candidates that mend track ``slot``'s stretch (first and last frame ``stretch_ends``)
     given the ``window`` frames beside it and ``thresholds`` ``min_iou, min_inside, min_share``
     (see :func:`mend_shared_stretches`), each with the stretch frames it lends. The tests on
-    the candidates' mean positions come first, for all of them: only those that pass have their
-    boxes built (``boxes_of``, per video frame), all at once."""
+    the candidates' mean positions come first, for all of them (the first, in the stretch, in one
+    compiled pass: :func:`away_from_boxes`): only those that pass have their boxes built
+    (``boxes_of``, per video frame), all at once."""
     start, end = stretch_ends
     min_iou, min_inside, min_share = thresholds
     n_frames = boxes.shape[1]
@@ -399,11 +406,10 @@ def _menders(boxes: np.ndarray, slot: int, stretch_ends: tuple[int, int], summar
     sides = (seen[seen < start][::-1], seen[seen > end])  # nearest the stretch first
     others = np.delete(boxes, slot, axis=0)
     near: dict[int, list[np.ndarray]] = {}  # per candidate that passes: its frames beside the stretch
-    for cluster in candidates.tolist():
-        inside = stretch[summary.covered[cluster, stretch]]
-        if inside.size < stretch.size / 2 or np.count_nonzero(~np.any(points_in_boxes(
-                summary.paths.at(cluster, inside), others[:, inside]), axis=0)) < stretch.size / 2:
-            continue
+    paths = summary.paths
+    elsewhere = away_from_boxes(candidates.astype(np.int64), start, end, summary.covered, paths.start, paths.offsets,
+                                paths.points, others)
+    for cluster in candidates[elsewhere].tolist():
         beside = [common for common in (side[summary.covered[cluster, side]] for side in sides)
                   if common.size >= window / 2 and min(abs(common[0] - start), abs(common[0] - end)) <= window]
         beside = [common for common in beside  # its patterns' mean position in the track's box
@@ -432,24 +438,25 @@ def _held_beside(own: np.ndarray, stretch_ends: tuple[int, int], summary: Cluste
     return int(np.count_nonzero(points_in_boxes(summary.paths.at(cluster, frames), own[frames])))
 
 
-def _held_up_to(own: np.ndarray, edge: int, summary: ClusterSummary, cluster: int, window: int,
-                backward: bool) -> float:
-    """Median distance from ``cluster``'s mean positions to the track's box centres over the
-    piece's last ``window`` frames up to its ``edge`` (first, back in time; ``own``: the track's
-    box in each video frame, NaN where none), where the cluster held the piece's object: seen in
-    at least half of those frames, each time inside the track's box; inf where it did not. Such a
-    cluster goes on with the object past the edge wherever it turns (the piece's straight line
-    would lose it there)."""
+def _held_up_to(own: np.ndarray, edge: int, summary: ClusterSummary, clusters: np.ndarray, window: int,
+                backward: bool) -> np.ndarray:
+    """Per cluster of ``clusters``: the median distance from its mean positions to the track's box
+    centres over the piece's last ``window`` frames up to its ``edge`` (first, back in time;
+    ``own``: the track's box in each video frame, NaN where none), where the cluster held the
+    piece's object: seen in at least half of those frames, each time inside the track's box; inf
+    where it did not. Such a cluster goes on with the object past the edge wherever it turns (the
+    piece's straight line would lose it there). The frames seen are counted for all of them at
+    once: most candidates are not seen there at all."""
     length = summary.covered.shape[1]
     frames = np.arange(edge, min(edge + window, length)) if backward else np.arange(max(edge - window + 1, 0), edge + 1)
     boxes = own[frames]
-    seen = summary.covered[cluster, frames] & ~np.isnan(boxes[:, 0])
-    if np.count_nonzero(seen) < window / 2:
-        return np.inf
-    points, boxes = summary.paths.at(cluster, frames[seen]), boxes[seen]
-    if not points_in_boxes(points, boxes).all():
-        return np.inf
-    return float(np.median(np.linalg.norm(points - box_centres(boxes), axis=1)))
+    seen = summary.covered[clusters][:, frames] & ~np.isnan(boxes[:, 0])
+    out = np.full(clusters.size, np.inf)
+    for row in np.flatnonzero(np.count_nonzero(seen, axis=1) >= window / 2):
+        points, held = summary.paths.at(clusters[row], frames[seen[row]]), boxes[seen[row]]
+        if points_in_boxes(points, held).all():
+            out[row] = np.median(np.linalg.norm(points - box_centres(held), axis=1))
+    return out
 
 
 def _motion_error(track: Track, stretch_ends: tuple[int, int], summary: ClusterSummary,

@@ -51,7 +51,8 @@ from scipy import sparse
 
 from trap_core.clustering import ClusterSummary, Trajectories, region_boxes_reach_border, summarise
 from trap_core.mining import MiningResult
-from trap_core.robust._kernels import companions_apart, cut_counts, group_distances, pairs_within
+from trap_core.robust._kernels import (companions_apart, cut_counts, group_distances, long_overlaps, pairs_within,
+                                      rejoin_candidates)
 from trap_core.robust.camera import map_points, to_world
 from trap_core.robust.end_colours import MIN_MATCH, EndColours
 from trap_core.robust.reach import TAIL, FragmentReach
@@ -147,28 +148,26 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
     if n_clusters < 2:
         return labels
     share = _structure_shares(labels, st_pattern, 1.0 if weights is None else weights)
-    similarity, both_ways = np.maximum(share, share.T), np.minimum(share, share.T)
     covered = summary.covered.astype(np.float32)
     overlap = covered @ covered.T
-    start = summary.paths.start
-    timed = (start[:, None] < start[None, :]) & (overlap <= max_overlap)
-    gap = start[None, :] - summary.paths.end[:, None]
-    adjacent = timed & (gap <= max(adjacent_gap, lone_gap)) & (adjacent_reach > 0)
-    candidate = timed & ((similarity >= min_similarity) | adjacent)
+    start, end = summary.paths.start, summary.paths.end
+    enters = leaves = from_border = to_border = np.zeros(0, dtype=bool)  # not read without ``at_border``
     if at_border is not None:
         enters, from_border = (_flag_near(labels, paths.start, summary.paths.start, flags, max_overlap)
                                for flags in (at_border.enters, at_border.from_border))
         leaves, to_border = (_flag_near(labels, paths.end, summary.paths.end, flags, max_overlap)
                              for flags in (at_border.leaves, at_border.to_border))
-        candidate &= (to_border[:, None] & from_border[None, :]) | (~leaves[:, None] & ~enters[None, :])
-    earlier, later = np.nonzero(candidate)
+    earlier, later = rejoin_candidates(share, overlap, start, end, max_overlap, min_similarity,
+                                       max(adjacent_gap, lone_gap), adjacent_reach > 0, to_border, from_border,
+                                       leaves, enters)
+    gap = start[later] - end[earlier]
     costs = _prediction_errors(summary.paths, earlier, later, transforms)
-    keep = (similarity[earlier, later] >= min_similarity) | ((costs <= adjacent_reach) & (
-        (gap[earlier, later] <= adjacent_gap) | _unrivalled(earlier, later, costs, n_clusters)))
+    keep = (np.maximum(share[earlier, later], share[later, earlier]) >= min_similarity) | (
+        (costs <= adjacent_reach) & ((gap <= adjacent_gap) | _unrivalled(earlier, later, costs, n_clusters)))
     if at_border is not None:  # going out, back inside the view only where its motion puts it
-        turned = to_border[earlier] & ~leaves[earlier] & ~from_border[later] & (gap[earlier, later] > lone_gap)
+        turned = to_border[earlier] & ~leaves[earlier] & ~from_border[later] & (gap > lone_gap)
         keep &= ~turned | (costs <= max_apart)
-    earlier, later, costs = earlier[keep], later[keep], costs[keep]
+    earlier, later, costs, gap = earlier[keep], later[keep], costs[keep], gap[keep]
     unsure = np.zeros(costs.size, dtype=bool)
     if at_border is not None:  # surely out and in only where the fragments themselves end and begin at the border
         surely_out, surely_in = leaves, enters
@@ -179,10 +178,11 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
             surely_in = enters & (_distance_to_border(starts, *view) <= max_apart)
         unsure = surely_out[earlier] != surely_in[later]
     # out of the view an object's motion says little: what both fragments show goes first (to a tenth)
+    both_ways = np.minimum(share[earlier, later], share[later, earlier])  # per pair, the smaller share
     shown = (np.zeros(costs.size) if at_border is None
-             else np.where(leaves[earlier] & enters[later], -np.round(both_ways[earlier, later], 1), 0.0))
+             else np.where(leaves[earlier] & enters[later], -np.round(both_ways, 1), 0.0))
     # out of the view, or away for long, only colours tell an object's return from a newcomer
-    by_colours = np.zeros(costs.size, dtype=bool) if colours is None else gap[earlier, later] > lone_gap
+    by_colours = np.zeros(costs.size, dtype=bool) if colours is None else gap > lone_gap
     if colours is not None and at_border is not None:
         by_colours |= leaves[earlier] & enters[later]
     group = np.arange(n_clusters)
@@ -214,8 +214,7 @@ def _going_along(summary: ClusterSummary, overlap: np.ndarray, min_frames: int, 
     and ``ALONG_SHARE`` of the shorter one's, and are on average at most ``reach`` px apart in
     those frames (patterns on different parts of an object are a part's size apart)."""
     along = np.zeros(overlap.shape, dtype=bool)
-    shorter = np.minimum.outer(summary.length, summary.length)
-    first, second = np.nonzero(np.triu((overlap >= min_frames) & (overlap >= ALONG_SHARE * shorter), k=1))
+    first, second = long_overlaps(overlap, summary.length, min_frames, ALONG_SHARE)
     if first.size == 0:
         return along
     paths = summary.paths

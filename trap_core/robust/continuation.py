@@ -126,11 +126,10 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
     own = box_path(current, summary.covered.shape[1])  # read against every candidate
     near = []
     close: list[tuple[int, float]] = []  # candidates that go on within window frames, their error off the line
-    for cluster in candidates.tolist():
-        covered = np.flatnonzero(summary.covered[cluster, lo:hi] & ~lent[cluster, lo:hi]) + lo
-        if covered.size < window:
-            continue
-        nearest = int(covered[-1] if backward else covered[0])
+    free = summary.covered[candidates, lo:hi] & ~lent[candidates, lo:hi]  # the frames each may lend
+    enough = np.count_nonzero(free, axis=1) >= window
+    nearest_free = (hi - 1 - np.argmax(free[:, ::-1], axis=1)) if backward else (lo + np.argmax(free, axis=1))
+    for cluster, nearest in zip(candidates[enough].tolist(), nearest_free[enough].tolist()):
         position = summary.paths.at(cluster, nearest)
         if abs(nearest - edge) <= window:
             close.append((cluster, float(np.linalg.norm(position - (origin + velocity * nearest)))))
@@ -445,17 +444,19 @@ def _held_up_to(own: np.ndarray, edge: int, summary: ClusterSummary, clusters: n
     ``own``: the track's box in each video frame, NaN where none), where the cluster held the
     piece's object: seen in at least half of those frames, each time inside the track's box; inf
     where it did not. Such a cluster goes on with the object past the edge wherever it turns (the
-    piece's straight line would lose it there). The frames seen are counted for all of them at
-    once: most candidates are not seen there at all."""
+    piece's straight line would lose it there). The frames seen, and whether the positions there
+    lie in the boxes, are read for all of them at once."""
     length = summary.covered.shape[1]
     frames = np.arange(edge, min(edge + window, length)) if backward else np.arange(max(edge - window + 1, 0), edge + 1)
     boxes = own[frames]
-    seen = summary.covered[clusters][:, frames] & ~np.isnan(boxes[:, 0])
+    seen = summary.covered[np.ix_(clusters, frames)] & ~np.isnan(boxes[:, 0])
+    paths = summary.paths  # each cluster's positions in those frames, read where it is seen (within its span)
+    rows = np.where(seen, paths.offsets[clusters, None] + frames - paths.start[clusters, None], 0)
+    inside = points_in_boxes(paths.points[rows], boxes[None]) | ~seen
     out = np.full(clusters.size, np.inf)
-    for row in np.flatnonzero(np.count_nonzero(seen, axis=1) >= window / 2):
-        points, held = summary.paths.at(clusters[row], frames[seen[row]]), boxes[seen[row]]
-        if points_in_boxes(points, held).all():
-            out[row] = np.median(np.linalg.norm(points - box_centres(held), axis=1))
+    for row in np.flatnonzero((np.count_nonzero(seen, axis=1) >= window / 2) & inside.all(axis=1)):
+        points, held = paths.points[rows[row, seen[row]]], boxes[seen[row]]
+        out[row] = np.median(np.linalg.norm(points - box_centres(held), axis=1))
     return out
 
 

@@ -29,6 +29,26 @@ def _naive_distance(a: tuple[int, np.ndarray], b: tuple[int, np.ndarray]) -> flo
     return d_traj * (2 - d_ov)
 
 
+def test_dense_gives_each_trajectory_point_in_its_span_and_nan_outside() -> None:
+    """Many trajectories read at once in any frames (repeated rows too): each point where the
+    trajectory has one, NaN before its first frame and after its last."""
+    rng = np.random.default_rng(4)
+    segments = [(int(rng.integers(0, 40)), rng.uniform(0, 100, size=(int(rng.integers(1, 30)), 2))) for _ in range(20)]
+    paths = _paths(segments)
+    rows, frames = np.array([3, 0, 3, 19, 7]), np.array([50, 2, 0, 31, 12, 69])
+    points = paths.dense(rows, frames)
+    assert points.shape == (5, 6, 2)
+    for i, row in enumerate(rows):
+        start, pts = segments[row]
+        for j, frame in enumerate(frames):
+            if start <= frame < start + len(pts):
+                np.testing.assert_array_equal(points[i, j], pts[frame - start])
+            else:
+                assert np.isnan(points[i, j]).all()
+    assert np.isnan(points).any() and not np.isnan(points).all()
+    assert paths.dense(np.zeros(0, dtype=np.int64), frames).shape == (0, 6, 2)
+
+
 def test_distance_matches_the_formula_and_the_papers_example() -> None:
     rng = np.random.default_rng(0)
     segments = [(int(rng.integers(0, 30)), rng.uniform(0, 100, size=(int(rng.integers(1, 25)), 2))) for _ in range(40)]

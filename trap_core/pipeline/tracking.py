@@ -202,7 +202,7 @@ def track(graphs: Sequence[PlaneGraph], params: TrapParams, miner: PatternMiner 
 
         def selection(eligible: np.ndarray | None) -> list[int]:
             return select_clusters(summary, n_frames, params.n_objects or None, params.length_tolerance,
-                                   params.selection_length(n_frames), chosen.separation, params.max_tracks(n_frames),
+                                   params.selection_length(n_frames), separation, params.max_tracks(n_frames),
                                    eligible=eligible, own_frames=own_frames, seen=seen)
         selected = selection(eligible_now)
         if robust and params.min_speed > 0 and params.own_region:  # until every selected cluster's own region moves

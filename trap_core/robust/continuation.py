@@ -450,13 +450,11 @@ def _held_up_to(own: np.ndarray, edge: int, summary: ClusterSummary, clusters: n
     frames = np.arange(edge, min(edge + window, length)) if backward else np.arange(max(edge - window + 1, 0), edge + 1)
     boxes = own[frames]
     seen = summary.covered[np.ix_(clusters, frames)] & ~np.isnan(boxes[:, 0])
-    paths = summary.paths  # each cluster's positions in those frames, read where it is seen (within its span)
-    rows = np.where(seen, paths.offsets[clusters, None] + frames - paths.start[clusters, None], 0)
-    inside = points_in_boxes(paths.points[rows], boxes[None]) | ~seen
+    points = summary.paths.dense(clusters, frames)  # a cluster is seen only within its span
+    inside = points_in_boxes(points, boxes[None]) | ~seen
     out = np.full(clusters.size, np.inf)
     for row in np.flatnonzero((np.count_nonzero(seen, axis=1) >= window / 2) & inside.all(axis=1)):
-        points, held = paths.points[rows[row, seen[row]]], boxes[seen[row]]
-        out[row] = np.median(np.linalg.norm(points - box_centres(held), axis=1))
+        out[row] = np.median(np.linalg.norm(points[row, seen[row]] - box_centres(boxes[seen[row]]), axis=1))
     return out
 
 

@@ -161,13 +161,14 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
                                        max(adjacent_gap, lone_gap), adjacent_reach > 0, to_border, from_border,
                                        leaves, enters)
     gap = start[later] - end[earlier]
+    forth, back = share[earlier, later], share[later, earlier]  # each pair's shares of the other's structures
     costs = _prediction_errors(summary.paths, earlier, later, transforms)
-    keep = (np.maximum(share[earlier, later], share[later, earlier]) >= min_similarity) | (
+    keep = (np.maximum(forth, back) >= min_similarity) | (
         (costs <= adjacent_reach) & ((gap <= adjacent_gap) | _unrivalled(earlier, later, costs, n_clusters)))
     if at_border is not None:  # going out, back inside the view only where its motion puts it
         turned = to_border[earlier] & ~leaves[earlier] & ~from_border[later] & (gap > lone_gap)
         keep &= ~turned | (costs <= max_apart)
-    earlier, later, costs, gap = earlier[keep], later[keep], costs[keep], gap[keep]
+    earlier, later, costs, gap, forth, back = (each[keep] for each in (earlier, later, costs, gap, forth, back))
     unsure = np.zeros(costs.size, dtype=bool)
     if at_border is not None:  # surely out and in only where the fragments themselves end and begin at the border
         surely_out, surely_in = leaves, enters
@@ -178,9 +179,8 @@ def rejoin_fragments(labels: np.ndarray, paths: Trajectories, st_pattern: np.nda
             surely_in = enters & (_distance_to_border(starts, *view) <= max_apart)
         unsure = surely_out[earlier] != surely_in[later]
     # out of the view an object's motion says little: what both fragments show goes first (to a tenth)
-    both_ways = np.minimum(share[earlier, later], share[later, earlier])  # per pair, the smaller share
     shown = (np.zeros(costs.size) if at_border is None
-             else np.where(leaves[earlier] & enters[later], -np.round(both_ways, 1), 0.0))
+             else np.where(leaves[earlier] & enters[later], -np.round(np.minimum(forth, back), 1), 0.0))
     # out of the view, or away for long, only colours tell an object's return from a newcomer
     by_colours = np.zeros(costs.size, dtype=bool) if colours is None else gap > lone_gap
     if colours is not None and at_border is not None:

@@ -2556,6 +2556,31 @@ def test_a_track_continued_back_in_time_is_continued_again_from_its_new_start() 
     np.testing.assert_allclose(out[0].boxes[:26], boxes[:26])
 
 
+def test_a_track_continued_back_to_where_its_object_came_into_view_is_not_continued_further() -> None:
+    """The object comes into view through the left border, 2 px a frame: partly in view from
+    frame 41, whole from frame 60, where the track starts. Cluster 0 holds its part in view in
+    frames 44-59, cluster 1 a sliver at the border in frames 10-42 (something else the patterns
+    found there before the object came). Cluster 0 goes before the track's start; the object
+    was out of view before it, so cluster 1 does not go before cluster 0, though it would
+    continue that piece were it a track of its own."""
+    from trap_core.clustering import summarise
+    from trap_core.robust import continue_tracks
+    t = np.arange(100, dtype=float)
+    left = 2 * (t - 60)  # the object's left edge
+    boxes = np.column_stack([np.maximum(left, 0), np.full(100, 200.0), np.minimum(40 + left, 40), np.full(100, 30.0)])
+    sliver = np.tile([0.0, 200.0, 8.0, 30.0], (100, 1))
+    centres, sliver_centres = boxes[:, :2] + boxes[:, 2:4] / 2, sliver[:, :2] + sliver[:, 2:4] / 2
+    summary = summarise(np.array([0, 1]), _paths([(44, centres[44:60]), (10, sliver_centres[10:43])]), np.ones(2), 100)
+    built = {0: _as_track(0, np.arange(44, 60), boxes[44:60]), 1: _as_track(0, np.arange(10, 43), sliver[10:43])}
+    late = _as_track(1, np.arange(60, 100), boxes[60:])
+    out = continue_tracks([late], summary, np.array([0, 1]), 100, 640, 480, 12, 40.0, built.__getitem__)
+    assert out[0].frames.tolist() == list(range(44, 100))
+    np.testing.assert_allclose(out[0].boxes[:16], boxes[44:60])
+    piece = _as_track(1, np.arange(44, 60), boxes[44:60])
+    out = continue_tracks([piece], summary, np.array([1]), 100, 640, 480, 12, 40.0, built.__getitem__)
+    assert out[0].frames.tolist() == list(range(10, 43)) + list(range(44, 60))
+
+
 def test_a_track_that_ends_behind_another_object_is_continued_by_the_cluster_coming_out_of_it() -> None:
     """Object A moves right behind object B (still, track 2) and is hidden from frame 45 to 61;
     track 1 ends at 44, its box on B's. Cluster 0 starts at 62, out of B, 18 frames later (more

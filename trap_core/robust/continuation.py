@@ -69,7 +69,9 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     candidate's first box appended must reach it too: one that starts clear of the border is
     something else the patterns found once the object was gone; and where the piece's motion
     takes it out of the view within ``window`` frames, only the candidate's boxes up to the first
-    one clear of the border are appended (the object is gone after that). Back in time, read
+    one clear of the border are appended (the object is gone after that, and the piece so made is
+    not continued in turn: a chain of short continuations, each at the border, would walk into
+    whatever the patterns found there once it was gone). Back in time, read
     first for last: a track whose cluster began late (its object's first patterns went to a
     cluster too short to be selected) gets that cluster's boxes before its start, unless another
     track ends within ``window`` frames before that start, within ``reach`` of where the piece's
@@ -82,6 +84,7 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
     lent = np.zeros(summary.covered.shape, dtype=bool)  # (cluster, frame) whose box went to a track
     for slot in range(len(out)):
         for backward in (False, True):
+            gone: set[int] = set()  # edges of pieces beyond which the object is out of view
             grown = True
             while grown:  # a continuation makes a new piece, whose own edge may be continued in turn
                 grown = False
@@ -92,23 +95,28 @@ def continue_tracks(tracks: Sequence[Track], summary: ClusterSummary, candidates
                 edges = bounds[gaps + 1] if backward else bounds[gaps]
                 limits = bounds[gaps] if backward else bounds[gaps + 1]
                 for edge, limit in zip(edges.tolist(), limits.tolist()):
+                    if edge in gone:
+                        continue
                     found = _continuation(out, slot, edge, limit, summary, candidates, lent, (width, height),
                                           window, reach, build, min_iou)
                     if found is not None:
-                        follow, cluster = found
+                        follow, cluster, out_of_view = found
                         out[slot] = with_frames(out[slot], follow.frames, follow.boxes, follow.score, follow.points)
                         lent[cluster, slice(limit + 1, edge) if backward else slice(edge + 1, limit)] = True
                         grown |= len(follow) > 0
+                        if out_of_view and len(follow):
+                            gone.add(int(follow.frames[0] if backward else follow.frames[-1]))
     return out
 
 
 def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary: ClusterSummary,
                   candidates: np.ndarray, lent: np.ndarray, view: tuple[float, float], window: int, reach: float,
-                  build: Callable[[int], Track], min_iou: float) -> tuple[Track, int] | None:
+                  build: Callable[[int], Track], min_iou: float) -> tuple[Track, int, bool] | None:
     """The boxes of the closest candidate that continues track ``slot``'s piece beyond its
     frame ``edge`` up to (not including) frame ``limit`` (after its last frame; before its
-    first where ``limit < edge``), and that candidate; None if none does (see
-    :func:`continue_tracks`)."""
+    first where ``limit < edge``), that candidate, and whether the piece's object is out of view
+    beyond those boxes (they were cut where they leave the border); None if none continues it
+    (see :func:`continue_tracks`)."""
     backward = limit < edge
     current = tracks[slot]
     line = _line_through(current, np.arange(edge, edge + window)) if backward else _motion_at(current, edge, window)
@@ -159,7 +167,7 @@ def _continuation(tracks: list[Track], slot: int, edge: int, limit: int, summary
                 follow = in_rows(follow, np.logical_and.accumulate(at_border[::-1])[::-1])
             else:
                 follow = in_rows(follow, np.logical_and.accumulate(at_border))
-        return follow, cluster
+        return follow, cluster, outward
     return None
 
 

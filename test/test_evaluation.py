@@ -166,7 +166,7 @@ def test_evaluate_writes_a_report(tmp_path: Path, venv_bin: Path) -> None:
                              "+ background out of boxes", "+ grown boxes", "+ edge lines out of boxes",
                              "+ filled gaps", "+ one track per object", "+ own frames, twin clusters",
                              "+ steady box size", "+ where objects meet",
-                             "+ across the border", "robust (+ steady box edges)"]
+                             "+ across the border", "+ followed past their ends", "robust (+ steady box edges)"]
     assert all(0 <= o["box_p"] <= 1 for m in methods.values() for o in m["objects"])
     for entry in [*methods.values(), *data[0]["baselines"].values()]:  # a cause exactly where under 90/90
         for o in entry["objects"]:

@@ -35,7 +35,7 @@ _ROBUST_OFF = dict(link_reach=0.0, label_memory=False, min_speed=0.0, image_moti
                    own_region=False, one_object=False, rejoin=False, rejoin_colour_reach=0.0, core_share=0.0,
                    still_regions=False, grow=False, edge_lines=False, fill_gaps=False, one_track=False,
                    own_frames=False, size_jump=0.0, groups=False, to_border=False,
-                   steady_edges=False)
+                   follow_ends=False, steady_edges=False)
 _ROBUST_STEPS = (("+ steps within reach", "link_reach"), ("+ label memory", "label_memory"),
                  ("+ camera motion", "min_speed"), ("+ camera motion from the images", "image_motion"),
                  ("+ steady steps", "steady_steps"), ("+ own region moves", "own_region"),
@@ -48,6 +48,7 @@ _ROBUST_STEPS = (("+ steps within reach", "link_reach"), ("+ label memory", "lab
                  ("+ own frames, twin clusters", "own_frames"),
                  ("+ steady box size", "size_jump"),
                  ("+ where objects meet", "groups"), ("+ across the border", "to_border"),
+                 ("+ followed past their ends", "follow_ends"),
                  ("robust (+ steady box edges)", "steady_edges"))
 
 

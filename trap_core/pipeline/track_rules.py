@@ -22,9 +22,9 @@ from trap_core.pipeline.params import TrapParams
 from trap_core.rag import PlaneGraph, StackedGraphs
 from trap_core.robust import (GroupBoxes, colour_overlap, colour_shares, continue_to_border, continue_tracks,
                               drop_repeated_pieces, drop_shared_stretches, drop_still_regions, drop_stray_pieces,
-                              drop_strays, end_at_exits, entering_part, extend_from_twins, fill_gaps, grow_boxes,
-                              join_handovers, join_returns, join_spare_returns, keep_one_size, lookalike_tracks,
-                              mend_shared_stretches, merge_duplicates, merge_parts, separate_groups,
+                              drop_strays, end_at_exits, entering_part, extend_from_twins, fill_gaps, follow_ends,
+                              grow_boxes, join_handovers, join_returns, join_spare_returns, keep_one_size,
+                              lookalike_tracks, mend_shared_stretches, merge_duplicates, merge_parts, separate_groups,
                               spare_entries, steady_edges, swap_at_crossings, through_groups, track_steps_steadily,
                               world_reach)
 
@@ -156,6 +156,8 @@ def tracks_of_clusters(clusters: Clusters, tracks_of: ClusterTracks, n_frames: i
         tracks = [t for t in tracks
                   if _goes_somewhere(t, transforms) and _steadily_seen(t, clusters.steady, transforms, params)]
         tracks = _long_enough(tracks, need, params.pass_frames(n_frames), n_frames, view, short)
+    if robust and params.follow_ends:
+        tracks = follow_ends(tracks, tracks_of.stacked, width, height, motion_window)
     if robust and params.steady_edges:
         tracks = [steady_edges(t, motion_window, width, height) for t in tracks]
     return tracks

@@ -17,6 +17,7 @@ from trap_core.robust.ends import alone_at_ends
 from trap_core.robust.duplicates import (drop_repeated_pieces, drop_shared_stretches, extend_from_twins,
                                          merge_duplicates, merge_parts, repeats_others)
 from trap_core.robust.extent import grow_boxes
+from trap_core.robust.follow import follow_ends
 from trap_core.robust.gaps import fill_gaps
 from trap_core.robust.groups import separate_groups
 from trap_core.robust.hops import moves_in_hops, steady_clusters, steady_patterns, track_steps_steadily, unsteady_steps
@@ -34,7 +35,7 @@ __all__ = ["CUT_SHARE", "HELD_SHARE", "HOP_SHARE", "SHADOWED_SHARE", "BorderCont
            "alone_at_ends", "border_contacts", "border_share", "camera_paths", "camera_transforms",
            "cluster_world_speed", "colour_overlap", "colour_shares", "colours_match", "continue_to_border",
            "continue_tracks", "drop_repeated_pieces", "drop_shared_stretches", "drop_still_regions",
-           "drop_stray_pieces", "drop_strays", "end_at_exits", "entering_part", "extend_from_twins", "fill_gaps",
+           "drop_stray_pieces", "drop_strays", "end_at_exits", "entering_part", "extend_from_twins", "fill_gaps", "follow_ends",
            "grow_boxes", "hand_to_owners", "held_share", "join_handovers", "join_returns", "join_spare_returns",
            "keep_one_size", "lookalike_meetings", "lookalike_tracks", "mend_shared_stretches", "merge_duplicates",
            "merge_parts", "moves_in_hops", "pattern_sizes", "reaches_border", "rejoin_fragments", "repeats_others",

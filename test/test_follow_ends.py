@@ -1,6 +1,9 @@
 """Tracks followed past their ends by their object's regions (trap_core.robust.follow)."""
 from __future__ import annotations
 
+import dataclasses
+from collections.abc import Container
+
 import numpy as np
 
 from trap_core.clustering import Track
@@ -35,7 +38,7 @@ def _track(track_id: int, corners: list[tuple[int, int] | None], frames: range) 
     return Track(track_id, np.array(frames), boxes, np.ones(len(frames)), track_id)
 
 
-def _moving(n: int, x0: int, y: int, step: int, seen: range | None = None) -> list[tuple[int, int] | None]:
+def _moving(n: int, x0: int, y: int, step: int, seen: Container[int] | None = None) -> list[tuple[int, int] | None]:
     """An object's corner in each of ``n`` frames, moving right ``step`` px a frame along row
     ``y`` (None outside the frames it is ``seen`` in)."""
     return [(x0 + step * t, y) if seen is None or t in seen else None for t in range(n)]
@@ -74,3 +77,26 @@ def test_a_box_that_holds_no_regions_of_its_own_is_not_followed() -> None:
     # a box on the ground around the white mark: a tenth of it is regions of its own
     on_ground = Track(1, np.arange(10, 20), np.tile([[138.0, 80.0, 32.0, 30.0]], (10, 1)), np.ones(10), 1)
     assert follow_ends([on_ground], regions, *SIZE, span=6)[0] is on_ground
+
+
+def test_a_gap_is_followed_into_from_both_sides_where_the_object_is_seen() -> None:
+    path = _moving(40, 20, 50, 3, seen=set(range(40)) - set(range(18, 22)))  # hidden over frames 18-21
+    regions = _frames([((0, 200, 0), path)], 40)
+    held = [*range(0, 10), *range(30, 40)]
+    gappy = Track(1, np.array(held), np.array([[*path[t], 24, 16] for t in held], float), np.ones(20), 1)
+    followed = follow_ends([gappy], regions, *SIZE, span=6)[0]
+    np.testing.assert_array_equal(followed.frames, [t for t in range(40) if not 18 <= t <= 21])
+    seen = [t for t in range(40) if path[t] is not None]
+    np.testing.assert_allclose(followed.boxes, [[*path[t], 24, 16] for t in seen], atol=0.5)
+
+
+def test_a_box_off_the_track_s_usual_size_is_not_followed() -> None:
+    """A first box 1.5 times the usual size holds the object and something else: only the last,
+    of the usual size, is followed."""
+    path = _moving(30, 30, 50, 3)
+    regions = _frames([((0, 200, 0), path)], 30)
+    held = _track(1, path, range(10, 20))
+    boxes = held.boxes.copy()
+    boxes[0] = [path[10][0] - 6, 46, 36, 24]
+    followed = follow_ends([dataclasses.replace(held, boxes=boxes)], regions, *SIZE, span=6)[0]
+    np.testing.assert_array_equal(followed.frames, np.arange(10, 30))

@@ -166,10 +166,11 @@ class TrapParams:
                             "objects (and not where it does in under three quarters of those frames: it flickers); "
                             "once the track rules have run, a box so placed in a meeting of up to 2 tau "
                             "frames follows the straight path of its track across it, inside the pair's box")
-    follow_ends: bool = _p(True, "robust: once the track rules have run, a track is followed back from its first box "
-                                 "and on from its last by the regions inside it, each found again where the box's "
-                                 "motion puts it with about its area and colour, for as long as half of their area "
-                                 "agrees on one shift, the box stays clear of the border and of other tracks' boxes")
+    follow_ends: bool = _p(True, "robust: once the track rules have run, a track is followed back from its first box, "
+                                 "on from its last and into the gaps fill_gaps leaves, by the regions inside the box, "
+                                 "each found again where the box's motion puts it with about its area and colour, for "
+                                 "as long as half of their area agrees on one shift and the box stays clear of the "
+                                 "border and of other tracks' boxes; not from a box off the track's usual size")
     steady_edges: bool = _p(True, "robust: once the track rules have run, a box edge further than a fifth of the "
                                   "track's box size from both lines of that edge, over the tau/2 frames before and "
                                   "the tau/2 after, is put between them (a region merged in or a part lost for a few "

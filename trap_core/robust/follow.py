@@ -11,14 +11,18 @@ after its last, the regions inside the object's box cover it as much as in the f
 about its area and colour (as the label memory finds a region again), and the box moves by the
 displacement most of the parts' area agrees on; then in the frame before that, and so on; the
 same forward from the last box. Parts not found keep their place in the box: one that noise
-split for a frame is found again in the next.
+split for a frame is found again in the next. A gap longer than ``fill_gaps`` bridges (the
+object hidden for a while, or its patterns lost) is followed into from both sides the same way:
+forward from the box before it, then back from the box after it, up to what the first reached.
 
 Following stops where less than half of the parts' area agrees on a displacement (the object is
 hidden, or turned into other regions), where the box reaches the border (the object leaves:
 :func:`~trap_core.robust.continue_to_border` boxes it while it is partly in view) and where the
 box meets another track's (who is who where objects meet is for the patterns to say). A box
 whose regions cover less than ``MIN_COVER`` of it (a body merged into the ground) has nothing
-to follow.
+to follow, and one more than ``USUAL_RATIO`` off the track's usual width or height holds a part
+of the object, or the object and a neighbour (two discs that met, boxed 81x100 for 51x51 and
+followed into a gap, lay on neither in 45 of 48 frames).
 """
 from __future__ import annotations
 
@@ -26,7 +30,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, box_iou, centre_path, reaches_border
+from trap_core.clustering import Track, box_iou, centre_path, reaches_border, usual_box
 from trap_core.rag import StackedGraphs
 from trap_core.rag.label_memory import AREA_RATIO
 from trap_core.robust.gaps import with_inferred
@@ -36,12 +40,13 @@ MIN_COVER = 0.3  # share of the end box its parts must cover
 MIN_AGREE = 0.5  # share of the parts' area that must agree on the displacement, frame after frame
 COLOUR_REACH = 24.0  # RGB distance between a part's mean colour and the region that continues it
 MEETING_IOU = 0.3  # a box that overlaps another track's this much is where objects meet
+USUAL_RATIO = 1.25  # a box more than this off the track's usual size holds a part, or its object and more
 
 
 def follow_ends(tracks: Sequence[Track], regions: StackedGraphs, width: float, height: float,
                 span: int) -> list[Track]:
-    """The tracks, each followed back from its first box and on from its last by its object's
-    regions, for as long as they are found together.
+    """The tracks, each followed back from its first box, on from its last and into its gaps by
+    its object's regions, for as long as they are found together.
 
     Parameters
     ----------
@@ -51,8 +56,8 @@ def follow_ends(tracks: Sequence[Track], regions: StackedGraphs, width: float, h
     width, height : float
         Frame size: a box that reaches its border is not followed further.
     span : int
-        Frames at a track's end whose box centres give its motion there (a straight line), the
-        first prediction of where its parts go.
+        Frames at a track's end (a gap's side) whose box centres give its motion there (a
+        straight line), the first prediction of where its parts go.
 
     Returns
     -------
@@ -63,21 +68,31 @@ def follow_ends(tracks: Sequence[Track], regions: StackedGraphs, width: float, h
     """
     out = list(tracks)
     for k in range(len(out)):
-        for direction in (-1, 1):
-            out[k] = _followed(out[k], regions, out[:k] + out[k + 1:], width, height, span, direction)
+        others = out[:k] + out[k + 1:]
+        track = _followed(out[k], 0, -1, -1, regions, others, width, height, span)
+        track = _followed(track, len(track) - 1, 1, len(regions), regions, others, width, height, span)
+        gaps = np.flatnonzero(np.diff(track.frames) > 1)
+        for left, right in zip(track.frames[gaps].tolist(), track.frames[gaps + 1].tolist()):
+            row = int(np.searchsorted(track.frames, left))
+            track = _followed(track, row, 1, right, regions, others, width, height, span)
+            row = int(np.searchsorted(track.frames, right))
+            track = _followed(track, row, -1, int(track.frames[row - 1]), regions, others, width, height, span)
+        out[k] = track
     return out
 
 
-def _followed(track: Track, regions: StackedGraphs, others: list[Track], width: float, height: float,
-              span: int, direction: int) -> Track:
-    """``track`` followed from its first box back in time (``direction`` -1) or from its last on (1)."""
-    end = 0 if direction < 0 else len(track) - 1
-    box = track.boxes[end].astype(float)
-    if reaches_border(box[None], width, height)[0]:
+def _followed(track: Track, row: int, direction: int, until: int, regions: StackedGraphs, others: list[Track],
+              width: float, height: float, span: int) -> Track:
+    """``track`` followed from its box in ``row`` back in time (``direction`` -1) or on (1), up
+    to the frame ``until`` (not included)."""
+    box = track.boxes[row].astype(float)
+    usual = usual_box(track)
+    if reaches_border(box[None], width, height)[0] or not (np.all(box[2:] <= USUAL_RATIO * usual)
+                                                            and np.all(usual <= USUAL_RATIO * box[2:])):
         return track
-    seen = track.frames[:span] if direction < 0 else track.frames[-span:]
+    seen = track.frames[row:row + span] if direction < 0 else track.frames[max(0, row + 1 - span):row + 1]
     line = straight_line(centre_path(track, int(track.frames[-1]) + 1), seen)
-    parts = _parts(regions, int(track.frames[end]), box)
+    parts = _parts(regions, int(track.frames[row]), box)
     if line is None or parts is None:
         return track
     offsets, areas, colours = parts
@@ -85,8 +100,8 @@ def _followed(track: Track, regions: StackedGraphs, others: list[Track], width: 
     step = direction * np.asarray(line[0], dtype=float)
     tolerance = max(2.0, 0.05 * np.sqrt(box[2] * box[3]))  # px: parts of one object move as one, within
     frames, boxes = [], []
-    frame = int(track.frames[end]) + direction
-    while 0 <= frame < len(regions):
+    frame = int(track.frames[row]) + direction
+    while frame != until:
         predicted = box[:2] + step
         moved = _agreed_shift(regions, frame, predicted + offsets, areas, colours, 2.0 + np.hypot(*step), tolerance,
                               least)

@@ -1,4 +1,4 @@
-"""Tracks followed past their ends by their object's regions (ours).
+"""Tracks followed past their ends and into their gaps by their object's regions (ours).
 
 A track has boxes where its cluster's patterns are seen, and an object can stay in view long
 before its first pattern or after its last: a structure is frequent only over ``freq_st_min``

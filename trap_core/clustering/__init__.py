@@ -8,8 +8,8 @@ from trap_core.clustering.selection import (MAX_TRACKS, ClusterSummary, seen_fra
 from trap_core.clustering.tracks import (FrameCores, Track, border_sides, box_centres, box_containment, box_iou,
                                         box_path, build_track, centre_inside, centre_path, centre_steps, core_regions,
                                         frame_cores, in_rows, one_place, points_in_boxes, reaches_border,
-                                        region_boxes_reach_border, seen_rows, track_pieces, usual_box, usual_size,
-                                        with_frames)
+                                        region_boxes_reach_border, regions_in_box, seen_rows, track_pieces, usual_box,
+                                        usual_size, with_frames)
 from trap_core.clustering.trajectory import ObservedPaths, Trajectories, observed_paths, trajectories
 
 __all__ = [
@@ -42,6 +42,7 @@ __all__ = [
     "points_in_boxes",
     "reaches_border",
     "region_boxes_reach_border",
+    "regions_in_box",
     "pattern_distances",
     "seen_frames",
     "seen_rows",

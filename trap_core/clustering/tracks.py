@@ -135,6 +135,15 @@ def points_in_boxes(points: np.ndarray, boxes: np.ndarray) -> np.ndarray:
     return np.all((points >= boxes[..., :2]) & (points <= boxes[..., :2] + boxes[..., 2:4]), axis=-1)
 
 
+def regions_in_box(bbox: np.ndarray, box: np.ndarray, slack: float = 0.0) -> np.ndarray:
+    """Which regions (``bbox``: (N, 4) first and last pixel, x0, y0, x1, y1, as plane graphs keep
+    them) lie wholly inside ``box`` ``(x, y, w, h)``: a region's last pixel may be the one just
+    past the box's (its right and bottom edges lie on pixel boundaries), and with ``slack`` its
+    first may lie that many pixels before the box's left and top edges."""
+    x, y, w, h = box
+    return (bbox[:, 0] >= x - slack) & (bbox[:, 1] >= y - slack) & (bbox[:, 2] <= x + w) & (bbox[:, 3] <= y + h)
+
+
 def reaches_border(boxes: np.ndarray, width: float, height: float, margin: float = 0.25,
                    size: np.ndarray | None = None) -> np.ndarray:
     """Whether boxes ``(x, y, w, h)`` (N, 4) come within ``margin`` times their size (their own,

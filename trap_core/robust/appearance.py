@@ -14,7 +14,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track
+from trap_core.clustering import Track, regions_in_box
 from trap_core.rag import PlaneGraph
 
 SAMPLES = 60  # frames a track's colours are read in, spread evenly over its frames
@@ -32,9 +32,7 @@ def colour_shares(tracks: Sequence[Track], graphs: Sequence[PlaneGraph], samples
         labels, areas = [], []
         for row in rows.tolist():
             graph = graphs[int(track.frames[row])]
-            x, y, w, h = track.boxes[row]
-            box = graph.bbox
-            inside = (box[:, 0] >= x) & (box[:, 1] >= y) & (box[:, 2] <= x + w) & (box[:, 3] <= y + h)
+            inside = regions_in_box(graph.bbox, track.boxes[row])
             labels.append(graph.label[inside])
             areas.append(graph.area[inside])
         counts.append((np.concatenate(labels or [np.zeros(0, np.int32)]).astype(np.int64),

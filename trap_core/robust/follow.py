@@ -30,7 +30,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from trap_core.clustering import Track, box_iou, centre_path, reaches_border, usual_box
+from trap_core.clustering import Track, box_iou, centre_path, reaches_border, regions_in_box, usual_box
 from trap_core.rag import StackedGraphs
 from trap_core.rag.label_memory import AREA_RATIO
 from trap_core.robust.gaps import with_inferred
@@ -126,9 +126,7 @@ def _parts(regions: StackedGraphs, frame: int, box: np.ndarray) -> tuple[np.ndar
     """(offsets from the box's corner, areas, mean colours) of the regions of ``frame`` wholly
     inside ``box`` (1 px of slack) but the backdrop; None where they cover under ``MIN_COVER``."""
     lo, hi = regions.node_offsets[frame], regions.node_offsets[frame + 1]
-    bbox = regions.bbox[lo:hi]
-    inside = ((bbox[:, 0] >= box[0] - 1) & (bbox[:, 1] >= box[1] - 1) & (bbox[:, 2] <= box[0] + box[2])
-              & (bbox[:, 3] <= box[1] + box[3]) & ~regions.backdrop[lo:hi])
+    inside = regions_in_box(regions.bbox[lo:hi], box, slack=1.0) & ~regions.backdrop[lo:hi]
     areas = regions.area[lo:hi][inside].astype(float)
     if areas.sum() < MIN_COVER * box[2] * box[3]:
         return None

@@ -28,7 +28,7 @@ import dataclasses
 
 import numpy as np
 
-from trap_core.clustering import Track, box_centres
+from trap_core.clustering import Track
 from trap_core.rag import StackedGraphs
 from trap_core.rag.plane_graph import edge_line_limits
 from trap_core.robust._kernels import grow_boxes as _grow_boxes
@@ -96,11 +96,8 @@ def _line_centred(track: Track, half: int) -> np.ndarray:
     centres within ``half`` frames of it (its own where it has no neighbour): the second reading
     of the track's displacement (module docstring). Sums over the window's offsets, a dense
     frame axis: O(n ``half``)."""
-    boxes = track.boxes.astype(float).copy()
-    if not len(track):
-        return boxes
     frames = track.frames.astype(np.int64)
-    centres = box_centres(boxes)
+    centres = track.boxes[:, :2] + track.boxes[:, 2:4] / 2
     start, span = frames[0], frames[-1] - frames[0] + 1
     dense = np.full((span + 2 * half, 2), np.nan)
     dense[frames - start + half] = centres
@@ -108,14 +105,15 @@ def _line_centred(track: Track, half: int) -> np.ndarray:
     for d in range(-half, half + 1):
         values = dense[half + d:half + d + span]
         there = ~np.isnan(values)
-        known = np.where(there, values, 0.0)
+        v = np.where(there, values, 0.0)
         sums[0] += there
         sums[1] += there * d
         sums[2] += there * d * d
-        sums[3] += known
-        sums[4] += known * d
+        sums[3] += v
+        sums[4] += v * d
     n, sd, sdd, sc, sdc = sums[:, frames - start]
     det = n * sdd - sd * sd
     fitted = np.where(det > 0, (sc * sdd - sd * sdc) / np.where(det > 0, det, 1), centres)
+    boxes = track.boxes.astype(float).copy()
     boxes[:, :2] += fitted - centres
     return boxes

@@ -1370,33 +1370,6 @@ def test_a_sparse_track_grows_against_its_box_interpolated_through_short_gaps() 
     np.testing.assert_allclose(grow_boxes(core, regions, still, lag=5, max_gap=1).boxes, core.boxes)
 
 
-def test_a_box_that_hops_between_look_alike_parts_still_grows_over_the_body() -> None:
-    """The track's patterns hold one leg of a walker, the left one in even frames and the right
-    one in odd frames: its box centre hops by the legs' distance, and so does its displacement
-    to any frame an odd number of frames away. Measured on the line through the centres around
-    each frame, the displacement is the walker's, and the box grows over the body and both legs."""
-    from trap_core.clustering import Track
-    from trap_core.rag import StackedGraphs
-    from trap_core.robust import grow_boxes
-    params = TrapParams(segmentation="colour")
-    graphs, legs = [], []
-    for t in range(21):
-        rgb = np.full((120, 200, 3), 40, np.uint8)
-        x = 40 + 3 * t
-        rgb[30:60, x:x + 24] = (200, 0, 0)           # the body
-        rgb[60:90, x:x + 8] = (0, 200, 0)            # two look-alike legs
-        rgb[60:90, x + 16:x + 24] = (0, 200, 0)
-        graphs.append(frame_graph(rgb, params))
-        legs.append((x + 16 * (t % 2), 60, 8, 30))
-    frames = np.arange(21)
-    held = Track(1, frames, np.array(legs, float), np.ones(21), 1)
-    grown = grow_boxes(held, StackedGraphs.of(graphs), np.tile(np.eye(3), (21, 1, 1)), lag=5)
-    middle = (frames >= 5) & (frames <= 15)  # boxes on both sides: every round
-    np.testing.assert_allclose(grown.boxes[middle],
-                               np.column_stack([40 + 3 * frames[middle], np.full(11, 30), np.full(11, 24),
-                                                np.full(11, 60)]))
-
-
 def test_a_still_region_the_object_crosses_leaves_its_box_and_its_parts_stay() -> None:
     """Every face of the object (spots on its edges, none inside) holds the block it crosses: the
     core box becomes the block."""

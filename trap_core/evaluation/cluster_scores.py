@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from trap_core.clustering import Hierarchy, Trajectories, labels_after_merges, select_clusters, summarise
+from trap_core.evaluation.paper_measures import occurrences_inside
 from trap_core.mining import MiningResult
 
 
@@ -34,8 +35,7 @@ def leaf_scores(result: MiningResult, patterns: np.ndarray, truth: dict[int, tup
         frame = result.occ_frame[rows]
         gt = boxes[frame]
         nb = result.occ_node_box[rows]
-        inside = (nb[:, 0] >= gt[:, 0]) & (nb[:, 1] >= gt[:, 1]) & (nb[:, 2] <= gt[:, 0] + gt[:, 2] - 1) & \
-            (nb[:, 3] <= gt[:, 1] + gt[:, 3] - 1)
+        inside = occurrences_inside(nb, gt)
         good[k], total[k] = inside.sum(), rows.size
         frames[k, frame[inside]] = True
     return LeafScores(good, total, frames, len(truth))

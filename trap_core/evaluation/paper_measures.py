@@ -9,8 +9,9 @@ import numpy as np
 from trap_core.mining import MiningResult
 
 
-def _inside(node_box: np.ndarray, gt: np.ndarray) -> np.ndarray:
-    """Occurrences whose node barycentres all lie inside the ground-truth box of their frame."""
+def occurrences_inside(node_box: np.ndarray, gt: np.ndarray) -> np.ndarray:
+    """Occurrences whose node barycentres all lie inside the ground-truth box of their frame
+    (``node_box``: (N, 4) box of each occurrence's barycentres; ``gt``: (N, 4) ``(x, y, w, h)``)."""
     x, y, w, h = gt.T
     return (node_box[:, 0] >= x) & (node_box[:, 1] >= y) & (node_box[:, 2] <= x + w - 1) & (node_box[:, 3] <= y + h - 1)
 
@@ -25,7 +26,7 @@ def cluster_precision_recall(result: MiningResult, patterns: np.ndarray, truth: 
     frames = result.occ_frame[rows]
     annotated = np.array([f in truth for f in frames.tolist()])
     gt = np.array([truth.get(f, (0, 0, 0, 0)) for f in frames.tolist()], dtype=float)
-    good = annotated & _inside(result.occ_node_box[rows], gt)
+    good = annotated & occurrences_inside(result.occ_node_box[rows], gt)
     return float(good.mean()), len(set(frames[good].tolist())) / len(truth)
 
 

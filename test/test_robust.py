@@ -1370,6 +1370,33 @@ def test_a_sparse_track_grows_against_its_box_interpolated_through_short_gaps() 
     np.testing.assert_allclose(grow_boxes(core, regions, still, lag=5, max_gap=1).boxes, core.boxes)
 
 
+def test_a_box_that_hops_between_look_alike_parts_still_grows_over_the_body() -> None:
+    """The track's patterns hold one leg of a walker, the left one in even frames and the right
+    one in odd frames: its box centre hops by the legs' distance, and so does its displacement
+    to any frame an odd number of frames away. Measured on the line through the centres around
+    each frame, the displacement is the walker's, and the box grows over the body and both legs."""
+    from trap_core.clustering import Track
+    from trap_core.rag import StackedGraphs
+    from trap_core.robust import grow_boxes
+    params = TrapParams(segmentation="colour")
+    graphs, legs = [], []
+    for t in range(21):
+        rgb = np.full((120, 200, 3), 40, np.uint8)
+        x = 40 + 3 * t
+        rgb[30:60, x:x + 24] = (200, 0, 0)           # the body
+        rgb[60:90, x:x + 8] = (0, 200, 0)            # two look-alike legs
+        rgb[60:90, x + 16:x + 24] = (0, 200, 0)
+        graphs.append(frame_graph(rgb, params))
+        legs.append((x + 16 * (t % 2), 60, 8, 30))
+    frames = np.arange(21)
+    held = Track(1, frames, np.array(legs, float), np.ones(21), 1)
+    grown = grow_boxes(held, StackedGraphs.of(graphs), np.tile(np.eye(3), (21, 1, 1)), lag=5)
+    middle = (frames >= 5) & (frames <= 15)  # boxes on both sides: every round
+    np.testing.assert_allclose(grown.boxes[middle],
+                               np.column_stack([40 + 3 * frames[middle], np.full(11, 30), np.full(11, 24),
+                                                np.full(11, 60)]))
+
+
 def test_a_still_region_the_object_crosses_leaves_its_box_and_its_parts_stay() -> None:
     """Every face of the object (spots on its edges, none inside) holds the block it crosses: the
     core box becomes the block."""
@@ -3459,7 +3486,8 @@ def test_window_medians_are_those_of_each_window_the_ends_cut_short_or_not() -> 
 def test_moving_regions_reads_only_nearby_lookalikes_yet_finds_what_all_of_them_give() -> None:
     """The windowed search of look-alikes (ordered by label, then x) against the rule read over
     every region of the other frame, on random frames of few labels (a road's hundreds of
-    look-alikes), with the camera panning, still, or unknown (NaN)."""
+    look-alikes), with the camera panning, still, or unknown (NaN), and the track's motion read
+    two ways (between its boxes, and between their centres on its line)."""
     from trap_core.robust._kernels import AREA_RATIO, moving_regions, near_box
     rng = np.random.default_rng(7)
     for trial in range(300):
@@ -3467,8 +3495,8 @@ def test_moving_regions_reads_only_nearby_lookalikes_yet_finds_what_all_of_them_
         centroid, other_centroid = rng.uniform(0, 200, (n, 2)), rng.uniform(0, 200, (m, 2))
         area, other_area = rng.integers(5, 400, n).astype(float), rng.integers(5, 400, m).astype(float)
         label, other_label = rng.integers(0, 3, n), rng.integers(0, 3, m)
-        if trial % 3 == 0:  # some regions exactly where the track's motion puts them
-            other_centroid[: min(n, m)] = centroid[: min(n, m)] + [6.0, -2.0]
+        if trial % 4 < 2:  # some regions exactly where either reading of the track's motion puts them
+            other_centroid[: min(n, m)] = centroid[: min(n, m)] + [[6.0, -2.0], [-4.0, 5.0]][trial % 4]
             other_label[: min(n, m)], other_area[: min(n, m)] = label[: min(n, m)], area[: min(n, m)]
         bbox = np.column_stack([centroid - 5, centroid + 5])
         box, other_box, around = np.array([50.0, 50, 40, 40]), np.array([56.0, 48, 40, 40]), np.array([40.0, 40, 80, 80])
@@ -3476,13 +3504,15 @@ def test_moving_regions_reads_only_nearby_lookalikes_yet_finds_what_all_of_them_
         camera[:2, 2] = [[0.0, 0.0], [3.0, 1.0], [np.nan, np.nan]][trial % 3]
         by_place = np.lexsort((other_centroid[:, 0], other_label)).astype(np.int64)
         near = near_box(bbox, area, around, 0.5, 4.0)
+        line, other_line = box + [3.0, -1.0, 0, 0], box + [-1.0, 4.0, 0, 0]  # the second reading: (-4, 5)
         found = moving_regions(near, centroid, area, label, other_centroid, other_area, other_label, by_place, box,
-                               other_box, camera, 0.3, np.full(n, -1, dtype=np.int8))
+                               other_box, line, other_line, camera, 0.3, np.full(n, -1, dtype=np.int8))
         for i in range(n):
             near = (bbox[i, 2] >= 0 and bbox[i, 3] >= 0 and bbox[i, 0] <= 160 and bbox[i, 1] <= 160
                     and area[i] <= 4.0 * 80 * 80)
             alike = (other_label == label[i]) & (AREA_RATIO * other_area > area[i]) & (other_area < AREA_RATIO * area[i])
-            moved = np.hypot(*(other_centroid[alike] - (centroid[i] + [6.0, -2.0])).T)
+            moved = np.r_[np.hypot(*(other_centroid[alike] - (centroid[i] + [6.0, -2.0])).T),
+                          np.hypot(*(other_centroid[alike] - (centroid[i] + [-4.0, 5.0])).T)]
             kept = np.hypot(*(other_centroid[alike] - (centroid[i] + camera[:2, 2])).T)
             kept = kept[~np.isnan(kept)]
             with_track = moved.min() if moved.size else np.inf
@@ -3509,7 +3539,7 @@ def test_objects_large_in_the_view_get_one_track_each_not_one_per_part() -> None
     a track of its own beside its car's. With it, clusters are selected again with a separation
     of half the largest track's usual size, and each car has one track."""
     params = TrapParams(segmentation="felzenszwalb")
-    graphs, truth = synthetic_graphs(SceneConfig(seed=3, shape="car", objects=3, object_scale=2.5, width=320,
+    graphs, truth = synthetic_graphs(SceneConfig(seed=2, shape="car", objects=3, object_scale=2.5, width=320,
                                                  height=240, frames=150, noise=1.0), params)
     boxes = [boxes_by_frame(t) for t in track(graphs, params).tracks]
     assert len(boxes) == len(truth) == 3

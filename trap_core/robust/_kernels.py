@@ -32,36 +32,41 @@ def _alike_in_area(area: float, other_area: float, factor: float) -> bool:
 @nb.njit(cache=True, nogil=True)
 def moving_regions(near: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
                    other_centroid: np.ndarray, other_area: np.ndarray, other_label: np.ndarray,
-                   other_by_place: np.ndarray, box: np.ndarray, other_box: np.ndarray, camera: np.ndarray,
-                   tolerance: float, known: np.ndarray) -> np.ndarray:
+                   other_by_place: np.ndarray, box: np.ndarray, other_box: np.ndarray, line: np.ndarray,
+                   other_line: np.ndarray, camera: np.ndarray, tolerance: float, known: np.ndarray) -> np.ndarray:
     """Mask of the regions ``near`` (rows, :func:`near_box`) that the track's displacement to the
-    other frame (``box`` to ``other_box``) puts on a look-alike region (same label, area within
+    other frame (``box`` to ``other_box``, or ``line`` to ``other_line``: the boxes centred on
+    the line through the track's centres) puts on a look-alike region (same label, area within
     ``AREA_RATIO``, within ``tolerance`` sqrt(area) + 1 px) at least twice as close as the camera's
     motion ``camera`` (3x3) does. ``other_by_place``: the other frame's rows ordered by label, then
     x, so that only the look-alikes within reach of each motion's point are read (over a road or
     gravel of few labels a region has hundreds of look-alikes in the frame). ``known``: per
     region, whether it was found so before for the same frames, motions and camera (-1: not
     looked for yet), filled in here: a box that grows again searches mostly the same regions."""
-    shift_x = other_box[0] + other_box[2] / 2 - (box[0] + box[2] / 2)
-    shift_y = other_box[1] + other_box[3] / 2 - (box[1] + box[3] / 2)
+    shifts = np.empty((2, 2))
+    shifts[0, 0] = other_box[0] + other_box[2] / 2 - (box[0] + box[2] / 2)
+    shifts[0, 1] = other_box[1] + other_box[3] / 2 - (box[1] + box[3] / 2)
+    shifts[1, 0] = other_line[0] + other_line[2] / 2 - (line[0] + line[2] / 2)
+    shifts[1, 1] = other_line[1] + other_line[3] / 2 - (line[1] + line[3] / 2)
     found = np.zeros(centroid.shape[0], dtype=np.bool_)
     for i in near:
         if known[i] >= 0:
             found[i] = known[i] == 1
             continue
         cx, cy = centroid[i, 0], centroid[i, 1]
-        mx, my = cx + shift_x, cy + shift_y
         limit = tolerance * np.sqrt(area[i]) + 1
         # the nearest look-alike to where the track's motion puts the region counts only within
         # ``limit``, and is then within ``limit`` in x: only those are read
         with_track = np.inf
-        for k in range(_first_at(other_label, other_centroid, other_by_place, label[i], mx - limit - 1),
-                       other_by_place.size):
-            j = other_by_place[k]
-            if other_label[j] != label[i] or other_centroid[j, 0] > mx + limit + 1:
-                break
-            if _alike_in_area(area[i], other_area[j], AREA_RATIO):
-                with_track = min(with_track, np.hypot(other_centroid[j, 0] - mx, other_centroid[j, 1] - my))
+        for s in range(2):
+            mx, my = cx + shifts[s, 0], cy + shifts[s, 1]
+            for k in range(_first_at(other_label, other_centroid, other_by_place, label[i], mx - limit - 1),
+                           other_by_place.size):
+                j = other_by_place[k]
+                if other_label[j] != label[i] or other_centroid[j, 0] > mx + limit + 1:
+                    break
+                if _alike_in_area(area[i], other_area[j], AREA_RATIO):
+                    with_track = min(with_track, np.hypot(other_centroid[j, 0] - mx, other_centroid[j, 1] - my))
         found[i] = with_track <= limit
         if found[i]:  # unless a look-alike lies within twice that of where the camera's motion puts it
             kx, ky = _mapped(camera, cx, cy)
@@ -116,14 +121,15 @@ def _first_at(label: np.ndarray, centroid: np.ndarray, by_place: np.ndarray, wan
 @nb.njit(cache=True, nogil=True)
 def grow_boxes(offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area: np.ndarray, label: np.ndarray,
                backdrop: np.ndarray, thickness: np.ndarray, nearest: np.ndarray, by_place: np.ndarray,
-               frames: np.ndarray, slot: np.ndarray, core: np.ndarray, searched: np.ndarray, boxes: np.ndarray,
-               cameras: np.ndarray, lag: int, reach: float, tolerance: float, max_area: float, rounds: int,
-               thin_below: float, line_reach: float) -> None:
+               frames: np.ndarray, slot: np.ndarray, core: np.ndarray, line: np.ndarray, searched: np.ndarray,
+               boxes: np.ndarray, cameras: np.ndarray, lag: int, reach: float, tolerance: float, max_area: float,
+               rounds: int, thin_below: float, line_reach: float) -> None:
     """Grow ``searched`` and ``boxes`` (T, 4) of a track's ``frames`` in place over the regions
     that move with it (:func:`trap_core.robust.grow_boxes`). The video's regions are stacked:
     frame ``t``'s are rows ``offsets[t]:offsets[t + 1]`` of ``bbox`` ... ``by_place`` (the last two
     numbered within the frame). ``slot``: row of ``core`` (the boxes motions are read between) of
-    each video frame, -1 where none; ``cameras`` (T, 2, 3, 3): the camera's motion from each
+    each video frame, -1 where none, and of ``line`` (those boxes centred on the line through
+    their centres: the second reading of the motion); ``cameras`` (T, 2, 3, 3): the camera's motion from each
     frame to ``lag`` frames before and after. ``thin_below`` > 0: edge lines left out of
     ``boxes`` within ``line_reach`` (:func:`trap_core.rag._kernels.nodes_box`)."""
     n_frames = offsets.size - 1
@@ -148,7 +154,8 @@ def grow_boxes(offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area
                 olo, ohi = offsets[others[k]], offsets[others[k] + 1]
                 found = moving_regions(near, centroid[lo:hi], area[lo:hi], label[lo:hi], centroid[olo:ohi],
                                        area[olo:ohi], label[olo:ohi], by_place[olo:ohi], core[slot[frame]],
-                                       core[slot[others[k]]], cameras[i, sides[k]], tolerance, known[k])
+                                       core[slot[others[k]]], line[slot[frame]], line[slot[others[k]]],
+                                       cameras[i, sides[k]], tolerance, known[k])
                 moving = (moving | found) if round_ == 0 else (moving & found)
             moving &= ~backdrop[lo:hi]
             held = np.flatnonzero(moving)

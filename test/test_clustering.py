@@ -201,12 +201,16 @@ def _seen_every(step: int, place: np.ndarray) -> MiningResult:
 
 def test_a_cluster_seen_in_half_the_frames_asked_is_a_track_only_apart_from_the_others() -> None:
     """With own frames, cluster 1 (seen in 15 frames, 0.15 of the video, under ``min_length``
-    0.25 but over half of it) is taken after cluster 0 while it keeps its distance; once it
-    passes cluster 0 in a fifth of its frames it is not, and seen in 9 frames it never is."""
+    0.25 but over half of it) is taken after cluster 0 while it keeps its distance in three
+    quarters of its frames (passing cluster 0 in a fifth of them, as where a track trades onto
+    its object for a while); passing it in half of them it is not (more likely a fragment of
+    cluster 0's object), and seen in 9 frames it never is."""
     apart = np.full((100, 2), 300.0)
-    passing = apart.copy()
-    passing[40:60] = 5.0
-    for place, step, expected in ((apart, 7, [0, 1]), (passing, 7, [0]), (apart, 12, [0])):
+    passing_a_fifth, passing_a_half = apart.copy(), apart.copy()
+    passing_a_fifth[40:60] = 5.0
+    passing_a_half[20:70] = 5.0
+    for place, step, expected in ((apart, 7, [0, 1]), (passing_a_fifth, 7, [0, 1]), (passing_a_half, 7, [0]),
+                                  (apart, 12, [0])):
         result = _seen_every(step, place)
         seen = seen_frames(result, np.array([0, 1]), np.array([0, 1]))
         summary = summarise(np.array([0, 1]), trajectories(observed_paths(result), np.arange(2)),

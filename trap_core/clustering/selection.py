@@ -11,7 +11,7 @@ from trap_core.clustering.trajectory import Trajectories
 from trap_core.mining import MiningResult
 
 MAX_TRACKS = 20  # no more tracks than this in a video where a track covers a share of it (min_length)
-APART_SHARE = 0.9  # share of its frames a cluster seen in under min_length of the video must lie apart from tracks
+APART_SHARE = 0.75  # share of its frames a cluster seen in under min_length of the video must lie apart from tracks
 
 
 @dataclass(frozen=True)

@@ -129,9 +129,9 @@ def grow_boxes(offsets: np.ndarray, bbox: np.ndarray, centroid: np.ndarray, area
     frame ``t``'s are rows ``offsets[t]:offsets[t + 1]`` of ``bbox`` ... ``by_place`` (the last two
     numbered within the frame). ``slot``: row of ``core`` (the boxes motions are read between) of
     each video frame, -1 where none, and of ``line`` (those boxes centred on the line through
-    their centres: the second reading of the motion); ``cameras`` (T, 2, 3, 3): the camera's motion from each
-    frame to ``lag`` frames before and after. ``thin_below`` > 0: edge lines left out of
-    ``boxes`` within ``line_reach`` (:func:`trap_core.rag._kernels.nodes_box`)."""
+    their centres: the second reading of the motion); ``cameras`` (T, 2, 3, 3): the camera's
+    motion from each frame to ``lag`` frames before and after. ``thin_below`` > 0: edge lines
+    left out of ``boxes`` within ``line_reach`` (:func:`trap_core.rag._kernels.nodes_box`)."""
     n_frames = offsets.size - 1
     for i in range(frames.size):
         frame = frames[i]

@@ -43,11 +43,9 @@ def moving_regions(near: np.ndarray, centroid: np.ndarray, area: np.ndarray, lab
     gravel of few labels a region has hundreds of look-alikes in the frame). ``known``: per
     region, whether it was found so before for the same frames, motions and camera (-1: not
     looked for yet), filled in here: a box that grows again searches mostly the same regions."""
-    shifts = np.empty((2, 2))
-    shifts[0, 0] = other_box[0] + other_box[2] / 2 - (box[0] + box[2] / 2)
-    shifts[0, 1] = other_box[1] + other_box[3] / 2 - (box[1] + box[3] / 2)
-    shifts[1, 0] = other_line[0] + other_line[2] / 2 - (line[0] + line[2] / 2)
-    shifts[1, 1] = other_line[1] + other_line[3] / 2 - (line[1] + line[3] / 2)
+    shifts = np.empty((2, 2))  # centre to centre, by each reading
+    shifts[0] = (other_box[:2] + other_box[2:] / 2) - (box[:2] + box[2:] / 2)
+    shifts[1] = (other_line[:2] + other_line[2:] / 2) - (line[:2] + line[2:] / 2)
     found = np.zeros(centroid.shape[0], dtype=np.bool_)
     for i in near:
         if known[i] >= 0:

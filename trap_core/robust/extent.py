@@ -96,7 +96,7 @@ def _line_centred(track: Track, half: int) -> np.ndarray:
     centres within ``half`` frames of it (its own where it has no neighbour): the second reading
     of the track's displacement (module docstring). Sums over the window's offsets, a dense
     frame axis: O(n ``half``)."""
-    boxes = track.boxes.astype(float).copy()
+    boxes = track.boxes.astype(float)  # a copy: moved in place below
     if not len(track):
         return boxes
     frames = track.frames.astype(np.int64)
